@@ -1,0 +1,288 @@
+"""Command line: ``circuitsim run|check|equations|components``. A thin face over the API.
+
+Exit codes: 0 success, 2 bad input (the message names file, line, component and the fix),
+1 solver failure (the message names the simulated time and the variable).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import os
+import sys
+import tempfile
+import warnings
+from pathlib import Path
+
+from .errors import CircuitsimError, ParameterError
+
+
+def _parse_sets(model, items: list[str]) -> dict[str, float]:
+    """``NAME=VALUE`` pairs -> SI floats, units checked against the parameter."""
+    from . import expr as ex
+    from .units import compatible, explain_mismatch, unit_info
+
+    out: dict[str, float] = {}
+    comp_units = {n: v.unit for c in model.netlist.components for n, v in c.values.items()}
+    for item in items:
+        if "=" not in item:
+            raise ParameterError(f"--set takes NAME=VALUE, got '{item}'")
+        name, text = (s.strip() for s in item.split("=", 1))
+        try:
+            node = ex.parse(text)
+            if ex.names(node):
+                raise ex.ExprError("--set values may not name parameters", text, 0)
+            value = ex.evaluate(node, {})
+            dim = ex.dimension(node, {})
+        except (ex.ExprError, ValueError, ZeroDivisionError) as exc:
+            raise ParameterError(f"--set {name}: {exc}") from None
+        if node.kind == "unit":
+            if name in model.netlist.parameters:
+                target = model.netlist.parameters[name].dim
+                unit = str(target) if target else None
+            else:
+                unit = comp_units.get(name)
+                target = unit_info(unit)[1] if unit and unit != "1" else None
+            if target is not None and dim is not None and not compatible(dim, target):
+                raise ParameterError(f"--set {name}: {explain_mismatch(dim, target, unit or '')}")
+        out[name] = value
+    return out
+
+
+def _atomic_write(path: str, write) -> None:
+    d = os.path.dirname(os.path.abspath(path)) or "."
+    os.makedirs(d, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=d, prefix=".circuitsim-", suffix=Path(path).suffix)
+    os.close(fd)
+    try:
+        write(tmp)
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+
+
+def summarize(res, window: float) -> dict:
+    """Steady value and dominant ripple of each probe over the last ``window`` of the run."""
+    from . import signal
+
+    out = {}
+    m = res.window(window)
+    for name in res.probes:
+        x = res[name]
+        entry = {"mean": float(x[m].mean()), "final": float(x[-1]),
+                 "unit": res.model.meta["units"].get(name, "")}
+        try:
+            h = signal.dominant_ripple(res.t[m], x[m])
+            if h.amplitude > 0:
+                # the fit's offset is the mean free of a partial ripple period
+                entry["mean"] = float(h.offset)
+            entry["ripple"] = {"frequency": float(h.frequency), "amplitude": float(h.amplitude)}
+        except ValueError:
+            entry["ripple"] = {"frequency": 0.0, "amplitude": 0.0}
+        out[name] = entry
+    return out
+
+
+def plot(res, path: str, names: list[str] | None = None) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    names = list(names or res.probes or res.states)[:8]
+    fig, axes = plt.subplots(len(names), 1, figsize=(8, 2.2 * len(names) + 0.6), sharex=True,
+                             squeeze=False)
+    for ax, name in zip(axes[:, 0], names, strict=True):
+        ax.plot(res.t, res[name], lw=0.7)
+        unit = res.model.meta["units"].get(name, "")
+        ax.set_ylabel(f"{name}" + (f" [{unit}]" if unit else ""))
+        ax.grid(alpha=0.3)
+    axes[-1, 0].set_xlabel("time [s]")
+    fig.suptitle(res.model.netlist.title)
+    fig.tight_layout()
+    _atomic_write(path, lambda p: fig.savefig(p, dpi=110, format="png"))
+    plt.close(fig)
+
+
+def cmd_run(args) -> int:
+    from .model import compile as compile_model
+    from .netlist import load
+
+    net = load(args.netlist)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        model = compile_model(net)
+    overrides = _parse_sets(model, args.set or [])
+    if overrides:
+        model.param_values(overrides)  # validate before integrating
+    msgs = [str(w.message) for w in caught] + \
+        ([] if not overrides else [w for w in model.physics_warnings(
+            model.param_values(overrides)) if w not in model.warnings])
+    if not args.json:
+        for w in msgs:
+            print(f"warning: {w}", file=sys.stderr)
+    res = model.simulate(stop=args.stop, params=overrides)
+    stem = Path(args.netlist).stem
+    files = {}
+    if res.t.size and not args.no_files:
+        csv = args.out or f"{stem}.csv"
+        res.to_csv(csv)
+        files["csv"] = csv
+        png = args.plot or f"{stem}.png"
+        plot(res, png)
+        files["plot"] = png
+    if not res.success:
+        print(f"error: {net.path}: simulation failed {res.message}", file=sys.stderr)
+        if args.json:
+            print(json.dumps({"success": False, "message": res.message, "files": files}))
+        return 1
+    summary = summarize(res, args.window)
+    if args.json:
+        print(json.dumps({"netlist": args.netlist, "success": True, "stop": float(res.t[-1]),
+                          "window": args.window, "probes": summary, "warnings": msgs,
+                          "files": files, "stats": {"nfev": res.nfev, "njev": res.njev,
+                                                    "points": int(res.t.size)}}, indent=1))
+        return 0
+    print(f"{net.title}: {res.t[-1]:g} s simulated, {res.nfev} residual calls; "
+          f"steady window = last {args.window:.0%}")
+    print(f"{'probe':<14}{'mean':>20}{'final':>20}{'ripple freq':>16}{'ripple amplitude':>20}")
+    for name, e in summary.items():
+        u = e["unit"]
+        print(f"{name:<14}{_fmt(e['mean'], u):>20}{_fmt(e['final'], u):>20}"
+              f"{e['ripple']['frequency']:>13.7g} Hz{_fmt(e['ripple']['amplitude'], u):>20}")
+    for kind, f in files.items():
+        print(f"{kind}: {f}")
+    return 0
+
+
+def _fmt(x: float, unit: str) -> str:
+    return f"{x:.7g} {unit}".strip() if math.isfinite(x) else str(x)
+
+
+def cmd_check(args) -> int:
+    from .model import CompiledModel, derive
+    from .netlist import load
+
+    net = load(args.netlist)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        cg, dae, idx = derive(net)
+    print(f"{net.path}: {net.title}")
+    print(cg.summary())
+    print(f"MNA DAE: {len(dae.equations)} equations, {len(dae.unknowns)} unknowns, "
+          f"{len(dae.differentiated())} differentiated")
+    for line in idx.report:
+        print(f"  {line}")
+    print(f"index-1 system: {len(idx.states)} unknowns ({idx.n_diff} differential: "
+          f"{', '.join(s.name for s in idx.states[:idx.n_diff])}; "
+          f"{len(idx.states) - idx.n_diff} algebraic)")
+    print("parameters: " + ", ".join(f"{k} = {p.value:g}" for k, p in net.parameters.items()))
+    print("probes: " + ", ".join(f"{k} = {p.text}" for k, p in net.probes.items()))
+    probe = CompiledModel(net, "", {"params": [p.name for p in dae.params]})
+    for w in [str(c.message) for c in caught] + probe.physics_warnings(probe.param_values()):
+        print(f"warning: {w}")
+    print("ok")
+    return 0
+
+
+def cmd_equations(args) -> int:
+    from .model import derive
+    from .netlist import load
+
+    net = load(args.netlist)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        _, dae, idx = derive(net)
+    if args.reduced:
+        print(idx.pretty(latex=args.latex))
+    else:
+        print(dae.pretty(latex=args.latex))
+    return 0
+
+
+def component_table(markdown: bool = False) -> str:
+    """The component registry as a table (type, ports, parameters, summary)."""
+    import circuitsim_components  # noqa: F401
+
+    from .component import COMPONENTS, Option, Param, RecordList, Signal
+
+    rows = []
+    seen = set()
+    for _name, cls in sorted(COMPONENTS.items()):
+        if cls in seen:
+            continue
+        seen.add(cls)
+        ports = ", ".join(f"{p.name} ({p.domain.name[:4]})" for p in cls.ports)
+        params = []
+        for k, d in cls.declared().items():
+            if isinstance(d, (Param, Signal)):
+                params.append(f"{k} [{d.unit}]")
+            elif isinstance(d, RecordList):
+                params.append(f"{k}: list of {{{', '.join(d.fields)}}}")
+            elif isinstance(d, Option):
+                params.append(f"{k}: {'/'.join(map(str, d.choices))}")
+        doc = (cls.__doc__ or "").strip().splitlines()[0]
+        rows.append((" / ".join(f"`{n}`" if markdown else n for n in cls.type_names), ports,
+                     "; ".join(params), doc))
+    if markdown:
+        lines = ["| type | ports | parameters | model |", "|---|---|---|---|"]
+        lines += [f"| {a} | {b} | {c} | {d} |" for a, b, c, d in rows]
+        return "\n".join(lines)
+    return "\n".join(f"{a:<20} {b:<40} {c}\n{'':<20} {d}" for a, b, c, d in rows)
+
+
+def cmd_components(args) -> int:
+    print(component_table(markdown=args.markdown))
+    return 0
+
+
+def build_parser() -> argparse.ArgumentParser:
+    ap = argparse.ArgumentParser(prog="circuitsim", description=__doc__.splitlines()[0])
+    sub = ap.add_subparsers(dest="command", required=True)
+    r = sub.add_parser("run", help="transient simulation; summary, CSV and PNG")
+    r.add_argument("netlist")
+    r.add_argument("--set", action="append", metavar="NAME=VALUE",
+                   help="override a parameter (units allowed: --set La=0.9mH)")
+    r.add_argument("--stop", type=float, help="stop time [s]")
+    r.add_argument("--out", help="CSV file (default: NETLIST_STEM.csv)")
+    r.add_argument("--plot", help="PNG file (default: NETLIST_STEM.png)")
+    r.add_argument("--no-files", action="store_true", help="write no CSV or PNG")
+    r.add_argument("--json", action="store_true", help="print one JSON object")
+    r.add_argument("--window", type=float, default=0.2,
+                   help="steady window as a fraction of the run (default 0.2)")
+    r.set_defaults(func=cmd_run)
+    c = sub.add_parser("check", help="validate; show the graph and equation counts")
+    c.add_argument("netlist")
+    c.set_defaults(func=cmd_check)
+    e = sub.add_parser("equations", help="print the DAE F(t, x, x', p) = 0")
+    e.add_argument("netlist")
+    e.add_argument("--latex", action="store_true")
+    e.add_argument("--reduced", action="store_true", help="the index-1 form handed to IDA")
+    e.set_defaults(func=cmd_equations)
+    k = sub.add_parser("components", help="list the component library")
+    k.add_argument("--markdown", action="store_true")
+    k.set_defaults(func=cmd_components)
+    return ap
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = build_parser().parse_args(argv)
+    if getattr(args, "window", 0.2) is not None and not 0 < getattr(args, "window", 0.2) <= 1:
+        print("error: --window is a fraction in (0, 1]", file=sys.stderr)
+        return 2
+    try:
+        return int(args.func(args))
+    except CircuitsimError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return exc.exit_code
+    except KeyboardInterrupt:
+        return 130
+    except BrokenPipeError:  # output piped into `head`: not an error of ours
+        sys.stderr.close()
+        return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

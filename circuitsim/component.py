@@ -1,0 +1,369 @@
+"""The component interface: ports, parameters with units and validity, a registry.
+
+A component is a small class stating its ports, its parameters and a few sympy residuals.
+It never sees the solver: the core gathers ``equations(x)`` through this interface and knows
+no component by type.
+
+Sign convention (as Modelica): a flow (current, torque, force) is positive *into* a port.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from typing import Any, ClassVar
+
+import sympy as sp
+
+
+@dataclass(frozen=True, slots=True)
+class Domain:
+    """A physical domain: the across and through variables of its nodes.
+
+    ``integral`` names the time integral of the across variable (angle of a shaft, position
+    of a flange); the core creates it on a node only when a component asks for it.
+    """
+
+    name: str
+    across: str
+    through: str
+    across_unit: str
+    through_unit: str
+    integral: str | None
+    integral_unit: str | None
+    references: tuple[str, ...]
+
+
+ELECTRICAL = Domain("electrical", "v", "i", "V", "A", None, None, ("gnd", "0"))
+ROTATIONAL = Domain("rotational", "w", "tau", "rad/s", "N*m", "phi", "rad", ("fixed",))
+TRANSLATIONAL = Domain("translational", "v", "f", "m/s", "N", "x", "m", ("fixed",))
+DOMAINS = {d.name: d for d in (ELECTRICAL, ROTATIONAL, TRANSLATIONAL)}
+
+
+@dataclass(frozen=True, slots=True)
+class Port:
+    """A named connection point in one domain."""
+
+    name: str
+    domain: Domain
+
+
+def Pin(name: str) -> Port:
+    return Port(name, ELECTRICAL)
+
+
+def Flange(name: str) -> Port:
+    return Port(name, ROTATIONAL)
+
+
+def TFlange(name: str) -> Port:
+    return Port(name, TRANSLATIONAL)
+
+
+@dataclass(frozen=True, slots=True)
+class Param:
+    """A numeric parameter: unit, meaning and validity. Its value is a run-time number.
+
+    ``default`` may be a number (SI) or the name of another parameter of the same component.
+    """
+
+    unit: str
+    doc: str
+    default: float | str | None = None
+    positive: bool = False
+    nonnegative: bool = False
+    integer: bool = False
+
+    def violation(self, value: float) -> str | None:
+        """Why ``value`` [SI] is invalid, or None."""
+        if not math.isfinite(value):
+            return "must be a finite number"
+        if self.positive and value <= 0:
+            return "must be positive"
+        if self.nonnegative and value < 0:
+            return "must not be negative"
+        if self.integer and float(value) != int(value):
+            return "must be a whole number"
+        return None
+
+
+@dataclass(frozen=True, slots=True)
+class Option:
+    """A structural choice (changes the equations): a bool or one of some strings."""
+
+    doc: str
+    default: Any
+    choices: tuple[Any, ...] = (True, False)
+
+
+@dataclass(frozen=True, slots=True)
+class RecordList:
+    """A list of records, each with the numeric fields given (e.g. harmonics)."""
+
+    doc: str
+    fields: Mapping[str, Param]
+
+
+@dataclass(frozen=True, slots=True)
+class Signal:
+    """A parameter that is a function of time: a constant or a waveform (see WAVEFORMS)."""
+
+    unit: str
+    doc: str
+    default: float | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class Branch:
+    """A conductive path between two ports (``None`` is the domain's reference) and its kind.
+
+    Kinds, for the structural checks of the graph: ``V`` independent across source, ``I``
+    independent through source, ``C`` stores across (capacitor, inertia), ``L`` stores
+    through (inductor), ``R`` dissipative, ``X`` anything else (controlled, nonlinear).
+    """
+
+    a: str
+    b: str | None
+    kind: str
+
+
+class Component:
+    """Base class. Subclasses declare ``ports`` and Param/Option/RecordList/Signal attributes.
+
+    Inside ``equations`` a parameter attribute reads as its sympy symbol, an Option as its
+    value, a RecordList as a list of dicts of symbols and a Signal as a sympy function of t.
+    """
+
+    ports: ClassVar[tuple[Port, ...]] = ()
+    branches: ClassVar[tuple[Branch, ...]] = ()
+
+    def __init__(self, name: str, values: Mapping[str, Any]):
+        self.name = name
+        self._values = dict(values)
+
+    def __getattribute__(self, attr: str) -> Any:
+        cls_attr = type(self).__dict__.get(attr) or _inherited(type(self), attr)
+        if isinstance(cls_attr, (Param, Option, RecordList, Signal)):
+            return object.__getattribute__(self, "_values")[attr]
+        return object.__getattribute__(self, attr)
+
+    @classmethod
+    def declared(cls) -> dict[str, Param | Option | RecordList | Signal]:
+        """All parameter-like declarations of the class, in declaration order."""
+        out: dict[str, Any] = {}
+        for klass in reversed(cls.__mro__):
+            for k, v in vars(klass).items():
+                if isinstance(v, (Param, Option, RecordList, Signal)):
+                    out[k] = v
+        return out
+
+    def bind(self, x: Scope) -> list[sp.Expr]:
+        """Define shorthand variables on the scope; return the equations that go with them."""
+        return []
+
+    def equations(self, x: Scope) -> list[sp.Expr]:
+        """Residuals that must equal zero."""
+        raise NotImplementedError
+
+    def initial(self, x: Scope) -> dict[sp.Symbol, sp.Expr]:
+        """Initial values of variables (default: start from rest)."""
+        return {}
+
+    def warnings(self, values: Mapping[str, float]) -> list[str]:
+        """Physics warnings for these numeric parameter values [SI]."""
+        return []
+
+
+def _inherited(cls: type, attr: str) -> Any:
+    for klass in cls.__mro__[1:]:
+        if attr in klass.__dict__:
+            return klass.__dict__[attr]
+    return None
+
+
+class PortScope:
+    """Symbols of one port: across/through and, on demand, the integral (angle, position)."""
+
+    def __init__(self, domain: Domain, across: sp.Expr, through: sp.Symbol,
+                 integral: Callable[[], sp.Expr]):
+        self._domain = domain
+        self._across = across
+        self._through = through
+        self._integral = integral
+
+    def __getattr__(self, name: str) -> sp.Expr:
+        d = self._domain
+        if name == d.across:
+            return self._across
+        if name == d.through:
+            return self._through
+        if d.integral is not None and name == d.integral:
+            return self._integral()
+        raise AttributeError(f"a {d.name} port has no '{name}'")
+
+
+class Scope:
+    """Per-instance symbol scope handed to ``Component.equations``.
+
+    ``x.p.v``/``x.p.i`` (pins), ``x.shaft.w``/``x.shaft.tau``/``x.shaft.phi`` (rotational),
+    ``x.flange.v``/``x.flange.f``/``x.flange.x`` (translational), ``x.var(name)`` an internal
+    unknown, ``x.der(expr)`` a time derivative, ``x.t`` time. Assigning ``x.v = ...`` exports a
+    named quantity that probes can read as ``NAME.v``.
+    """
+
+    def __init__(self, comp: str, ports: Mapping[str, Any], make_var: Callable[[str], sp.Symbol],
+                 der: Callable[[sp.Expr], sp.Expr], t: sp.Symbol):
+        object.__setattr__(self, "_comp", comp)
+        object.__setattr__(self, "_ports", dict(ports))
+        object.__setattr__(self, "_make_var", make_var)
+        object.__setattr__(self, "_exports", {})
+        object.__setattr__(self, "der", der)
+        object.__setattr__(self, "t", t)
+
+    def var(self, name: str) -> sp.Symbol:
+        sym = self._make_var(name)
+        self._exports.setdefault(name, sym)
+        return sym
+
+    def __getattr__(self, name: str) -> Any:
+        ports = object.__getattribute__(self, "_ports")
+        if name in ports:
+            return ports[name]
+        exports = object.__getattribute__(self, "_exports")
+        if name in exports:
+            return exports[name]
+        raise AttributeError(f"{self._comp} has no port or variable '{name}'")
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        self._exports[name] = value
+
+
+@dataclass
+class Registry:
+    """Explicit registries filled by decorators: components and waveforms."""
+
+    components: dict[str, type[Component]] = field(default_factory=dict)
+    waveforms: dict[str, type] = field(default_factory=dict)
+
+
+REGISTRY = Registry()
+COMPONENTS = REGISTRY.components
+WAVEFORMS = REGISTRY.waveforms
+
+
+def register(*names: str) -> Callable[[type[Component]], type[Component]]:
+    """Class decorator: make a component available under ``type:`` names in netlists."""
+
+    def deco(cls: type[Component]) -> type[Component]:
+        for n in names:
+            if n in COMPONENTS and COMPONENTS[n] is not cls:
+                raise ValueError(f"component type '{n}' registered twice")
+            COMPONENTS[n] = cls
+        cls.type_names = names  # type: ignore[attr-defined]
+        return cls
+
+    return deco
+
+
+def register_waveform(name: str) -> Callable[[type], type]:
+    def deco(cls: type) -> type:
+        WAVEFORMS[name] = cls
+        cls.kind = name  # type: ignore[attr-defined]
+        return cls
+
+    return deco
+
+
+class Waveform:
+    """A signal of time with numeric parameters. ``expr(t, p)`` gets a dict of symbols."""
+
+    params: ClassVar[dict[str, Param]] = {}
+    scalar_key: ClassVar[str | None] = None
+
+    def expr(self, t: sp.Symbol, p: Mapping[str, sp.Expr], data: Any = None) -> sp.Expr:
+        raise NotImplementedError
+
+    def breakpoints(self, p: Mapping[str, float], t_stop: float) -> list[float]:
+        """Times [s] where the waveform has a corner (the integrator restarts there)."""
+        return []
+
+
+class OnePort(Component):
+    """Two pins p, n. v = p.v - n.v; i enters at p and leaves at n."""
+
+    ports = (Pin("p"), Pin("n"))
+    branches = (Branch("p", "n", "X"),)
+
+    def bind(self, x: Scope) -> list[sp.Expr]:
+        x.v = x.p.v - x.n.v
+        x.i = x.p.i
+        return [x.p.i + x.n.i]
+
+
+class OneFlange(Component):
+    """One rotational flange acting against the fixed reference: w = shaft speed,
+    tau = torque into the shaft flange."""
+
+    ports = (Flange("shaft"),)
+    branches = (Branch("shaft", None, "X"),)
+
+    def bind(self, x: Scope) -> list[sp.Expr]:
+        x.w = x.shaft.w
+        x.tau = x.shaft.tau
+        return []
+
+
+class OneTFlange(Component):
+    """One translational flange acting against the fixed reference: v = flange speed,
+    f = force into the flange."""
+
+    ports = (TFlange("flange"),)
+    branches = (Branch("flange", None, "X"),)
+
+    def bind(self, x: Scope) -> list[sp.Expr]:
+        x.v = x.flange.v
+        x.f = x.flange.f
+        return []
+
+
+class Pmod(sp.Function):
+    """Periodic time: x mod T in [0, T). Its derivative in x is 1 (corners are breakpoints)."""
+
+    nargs = 2
+
+    def fdiff(self, argindex=1):
+        if argindex == 1:
+            return sp.Integer(1)
+        x, T = self.args
+        return -sp.floor(x / T)
+
+
+class Lookup(sp.Function):
+    """Linear interpolation of the run-time table number ``k`` at ``x``: Lookup(k, x)."""
+
+    nargs = 2
+
+    def fdiff(self, argindex=2):
+        if argindex != 2:
+            raise sp.ArgumentIndexError(self, argindex)
+        return LookupSlope(*self.args)
+
+
+class LookupSlope(sp.Function):
+    """Slope of table ``k`` at ``x`` (piecewise constant, so its own derivative is 0)."""
+
+    nargs = 2
+
+    def fdiff(self, argindex=2):
+        return sp.Integer(0)
+
+
+@dataclass(frozen=True)
+class TableData:
+    """A measured signal that drives a source: samples ``x`` [s] and values ``y`` [SI]."""
+
+    x: Any
+    y: Any
+    label: str
+    index: int = -1

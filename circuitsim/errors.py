@@ -1,0 +1,63 @@
+"""One exception family for everything a user can get wrong, each carrying where it came from."""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True, slots=True)
+class SourceLoc:
+    """A place in a netlist file: ``file:line`` (line is 1-based; 0 when unknown)."""
+
+    file: str
+    line: int = 0
+
+    def __str__(self) -> str:
+        name = self.file
+        try:
+            rel = os.path.relpath(name)
+            if not rel.startswith(".."):
+                name = rel
+        except ValueError:
+            pass
+        return f"{name}:{self.line}" if self.line else name
+
+
+class CircuitsimError(Exception):
+    """Base of every error circuitsim raises on bad input or an unsolvable circuit.
+
+    The message always says where (file, line, component) and what would fix it.
+    """
+
+    exit_code = 2
+
+    def __init__(self, message: str, loc: SourceLoc | None = None, component: str | None = None):
+        self.loc = loc
+        self.component = component
+        self.bare = message
+        parts = []
+        if loc is not None:
+            parts.append(f"{loc}:")
+        if component:
+            parts.append(f"{component}:")
+        parts.append(message)
+        super().__init__(" ".join(parts))
+
+
+class NetlistError(CircuitsimError):
+    """The netlist file is malformed: syntax, unknown names, wrong structure."""
+
+
+class ParameterError(CircuitsimError):
+    """A parameter value is missing, has the wrong unit, or is outside its validity."""
+
+
+class SingularCircuitError(CircuitsimError):
+    """The circuit has no unique solution (floating nodes, source loops or cutsets)."""
+
+
+class SolverError(CircuitsimError):
+    """The integrator or a Newton solve failed; the message names time and variable."""
+
+    exit_code = 1

@@ -1,0 +1,219 @@
+"""Transient integration with SUNDIALS IDA (scikit-sundae) on the index-1 residual.
+
+Consistent initial values include the derivatives of algebraic unknowns (IDA's own
+correction does not give those; a wrong y' there makes the first step fail). Waveform corners
+are breakpoints where the integrator restarts. Long runs go in chunks whose output can be
+decimated, so memory stays bounded.
+"""
+
+from __future__ import annotations
+
+import itertools
+from collections.abc import Mapping
+
+import numpy as np
+
+from .errors import SolverError
+from .result import SimResult, Status
+
+
+def _break_times(model, values: Mapping[str, float], stop: float) -> list[float]:
+    from circuitsim_components import waveforms  # noqa: F401 - registry
+
+    from .component import WAVEFORMS
+
+    out: list[float] = []
+    for kind, fields in model.meta["breaks"]:
+        p = {f: values[name] for f, name in fields}
+        out += WAVEFORMS[kind]().breakpoints(p, stop)
+    return sorted({b for b in out if 0.0 < b < stop})
+
+
+def consistent_initial(model, t0: float, y: np.ndarray, p: tuple[float, ...],
+                       yp_guess: np.ndarray | None = None, tol: float = 1e-10,
+                       max_iter: int = 60) -> tuple[np.ndarray, np.ndarray]:
+    """Given the differential states in ``y``, solve F = 0 for the algebraic states and the
+    derivatives of the differential ones (damped Newton with the analytic Jacobian), then the
+    derivatives of the algebraic states from dF/dt = 0.
+
+    Raises SolverError naming the equation that could not be satisfied.
+    """
+    residual, _, parts, _, _ = model.fns
+    nd = model.meta["n_diff"]
+    n = len(y)
+    y = np.array(y, float)
+    yp = np.zeros(n) if yp_guess is None else np.array(yp_guess, float)
+    res = np.zeros(n)
+
+    def F(y_, yp_):
+        residual(t0, y_, yp_, res, p)
+        return res.copy()
+
+    f = F(y, yp)
+    scale = 1.0 + np.abs(y)
+    for _ in range(max_iter):
+        if np.max(np.abs(f)) < tol * (1 + np.max(np.abs(y))):
+            break
+        Fy, Fyp, _ = parts(t0, y, yp, p)
+        A = np.hstack([Fyp[:, :nd], Fy[:, nd:]])
+        try:
+            dz = np.linalg.solve(A, -f)
+        except np.linalg.LinAlgError:
+            dz = np.linalg.lstsq(A, -f, rcond=None)[0]
+        step = 1.0
+        norm0 = np.linalg.norm(f)
+        for _ in range(30):
+            yp_t, y_t = yp.copy(), y.copy()
+            yp_t[:nd] += step * dz[:nd]
+            y_t[nd:] += step * dz[nd:]
+            f_t = F(y_t, yp_t)
+            if np.all(np.isfinite(f_t)) and np.linalg.norm(f_t) < (1 - 1e-4 * step) * norm0:
+                break
+            step *= 0.5
+        y, yp, f = y_t, yp_t, f_t
+        scale = 1.0 + np.abs(y)
+    else:
+        worst = int(np.argmax(np.abs(f)))
+        raise SolverError(f"no consistent initial values at t = {t0:g} s: residual of "
+                          f"equation {worst} stays at {f[worst]:.3g} (state "
+                          f"{model.state_names[worst] if worst < n else '?'}). Try "
+                          f"init: op, or give initial values")
+    del scale
+    # d/dt F = Ft + Fy y' + Fyp y'' = 0; unknowns: y' of algebraic, y'' of differential.
+    Fy, Fyp, Ft = parts(t0, y, yp, p)
+    if nd < n:
+        A = np.hstack([Fyp[:, :nd], Fy[:, nd:]])
+        rhs = -(Ft + Fy[:, :nd] @ yp[:nd])
+        sol = np.linalg.lstsq(A, rhs, rcond=None)[0]
+        yp[nd:] = sol[nd:]
+    return y, yp
+
+
+def initial_state(model, t0: float, p: tuple[float, ...]) -> tuple[np.ndarray, list[str]]:
+    """Differential states at rest plus component initial values; and which values given
+    for eliminated or algebraic variables disagree with the solution (checked later)."""
+    n = len(model.state_names)
+    y = np.zeros(n)
+    _, _, _, _, initial = model.fns
+    vals = initial(t0, y, np.zeros(n), p)
+    k = len(model.meta["initial"])
+    for (_name, idx), v in zip(model.meta["initial"], vals[:k], strict=True):
+        if 0 <= idx < model.meta["n_diff"]:
+            y[idx] = v
+    return y, []
+
+
+def simulate(model, stop: float | None = None, params: Mapping[str, float] | None = None, *,
+             step: float | None = None, t_eval: np.ndarray | None = None,
+             rtol: float | None = None, atol: float | None = None,
+             max_step: float | None = None, init: str | None = None,
+             chunk: int = 50_000, keep_after: float | None = None, decimate: int = 1
+             ) -> SimResult:
+    """Integrate from t = 0 to ``stop`` [s].
+
+    Parameters
+    ----------
+    params : overrides by name [SI] (netlist or component parameters); no recompilation.
+    step : output step [s] (default: the netlist's, else stop / 20000).
+    t_eval : explicit output times [s] (overrides step).
+    rtol, atol, max_step : IDA tolerances and largest step [s] (0: unbounded).
+    init : 'rest' (states at their initial values, default) or 'op' (DC operating point).
+    chunk : output points per integrator call; memory is bounded by chunk when decimating.
+    keep_after : [s] keep every output point after this time, and only every ``decimate``-th
+        before it (for long runs whose end is analysed).
+    """
+    import sksundae as sun
+
+    an = model.netlist.analysis
+    stop = float(stop if stop is not None else an.stop)
+    if not stop > 0:
+        raise SolverError("stop time must be positive")
+    rtol = an.rtol if rtol is None else rtol
+    atol = an.atol if atol is None else atol
+    max_step = an.max_step if max_step is None else max_step
+    init = init or an.init
+    values = model.param_values(params)
+    p = tuple(values[n] for n in model.meta["params"])
+    if t_eval is None:
+        h = step or an.step or stop / 20_000
+        n_out = round(stop / h)
+        t_eval = np.linspace(0.0, stop, n_out + 1)
+    t_eval = np.asarray(t_eval, float)
+    residual, jac, _, _, _ = model.fns
+    nd = model.meta["n_diff"]
+    n = len(model.state_names)
+    if n == 0:  # every unknown was eliminated: the outputs are explicit functions of t
+        empty = np.zeros((0, t_eval.size))
+        return SimResult(t_eval, empty, empty, (), Status.OK, "", 0, 0, model, p)
+    y0, _ = initial_state(model, 0.0, p)
+    if init == "op":
+        from .analyses import operating_point
+
+        y0 = operating_point(model, params).y
+    try:
+        y0, yp0 = consistent_initial(model, 0.0, y0, p)
+    except SolverError as exc:
+        return SimResult(t_eval[:1], np.zeros((n, 0)), np.zeros((n, 0)), model.state_names,
+                         Status.INIT_FAILED, exc.bare, 0, 0, model, p)
+    breaks = _break_times(model, values, stop)
+    edges = sorted({0.0, *breaks, stop})
+    ts, ys, yps = [], [], []
+    nfev = njev = 0
+    y, yp, t_now = y0, yp0, 0.0
+    opts = {"rtol": rtol, "atol": atol, "userdata": p, "jacfn": jac, "max_step": max_step,
+                "max_num_steps": 200_000, "algebraic_idx": list(range(nd, n)) or None}
+    status, detail = Status.OK, ""
+    keep_from = keep_after if keep_after is not None else -np.inf
+    for a, b in itertools.pairwise(edges):
+        inner = t_eval[(t_eval > a) & (t_eval < b)]
+        pieces = [inner[i:i + chunk] for i in range(0, len(inner), chunk)] or [inner]
+        for k, piece in enumerate(pieces):
+            end = b if k == len(pieces) - 1 else piece[-1]
+            span = np.concatenate([[t_now], piece[piece > t_now], [end]])
+            span = np.unique(span)
+            if len(span) < 2:
+                continue
+            solver = sun.ida.IDA(residual, **opts)
+            sol = solver.solve(span, y, yp)
+            nfev += int(sol.nfev or 0)
+            njev += int(sol.njev or 0)
+            got_t = np.asarray(sol.t)
+            if got_t.size:
+                sel = np.isin(got_t, t_eval)
+                if t_now == 0.0 and not ts:
+                    sel[0] = True
+                keep = sel & ((got_t >= keep_from) | (np.arange(got_t.size) % decimate == 0))
+                ts.append(got_t[keep])
+                ys.append(np.asarray(sol.y)[keep])
+                yps.append(np.asarray(sol.yp)[keep])
+            if not sol.success or got_t.size == 0 or got_t[-1] < end * (1 - 1e-12):
+                t_fail = float(got_t[-1]) if got_t.size else t_now
+                status = Status.SOLVER_FAILED
+                detail = _failure(model, sol, t_fail, rtol, atol)
+                break
+            y, yp, t_now = np.asarray(sol.y)[-1], np.asarray(sol.yp)[-1], float(got_t[-1])
+        if status is not Status.OK:
+            break
+        if b < stop:  # a waveform corner: restart with consistent derivatives
+            try:
+                y, yp = consistent_initial(model, b, y, p, yp_guess=yp)
+            except SolverError as exc:
+                status, detail = Status.SOLVER_FAILED, exc.bare
+                break
+    t_all = np.concatenate(ts) if ts else np.zeros(0)
+    y_all = np.concatenate(ys).T if ys else np.zeros((n, 0))
+    yp_all = np.concatenate(yps).T if yps else np.zeros((n, 0))
+    return SimResult(t_all, y_all, yp_all, model.state_names, status, detail, nfev, njev,
+                     model, p)
+
+
+def _failure(model, sol, t_fail: float, rtol: float, atol: float) -> str:
+    y = np.asarray(sol.y)
+    yp = np.asarray(sol.yp)
+    name = "?"
+    if y.size:
+        rate = np.abs(yp[-1]) / (rtol * np.abs(y[-1]) + atol)
+        name = model.state_names[int(np.argmax(rate))]
+    return (f"at t = {t_fail:.6g} s ({str(sol.message).strip()}); fastest-changing variable: "
+            f"{name}. Try smaller tolerances or max_step, check the parameter values, or run "
+            f"`circuitsim check NETLIST`")

@@ -1,0 +1,194 @@
+"""Compile a netlist once per topology into a CompiledModel; parameters vary at run time.
+
+Orchestrates graph -> mna -> structure -> codegen, with the generated module cached on disk
+by topology. A CompiledModel is picklable (a sweep worker re-imports the cached module).
+"""
+
+from __future__ import annotations
+
+import bisect
+import warnings
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from . import codegen
+from .errors import ParameterError
+from .netlist import Netlist
+
+
+class CircuitWarning(UserWarning):
+    """Physics warnings (non-conserving coupling, inconsistent initial values)."""
+
+
+def _near(name: str, options) -> str:
+    import difflib
+
+    close = difflib.get_close_matches(name, list(options), n=3, cutoff=0.5)
+    return f" (did you mean {', '.join(close)}?)" if close else ""
+
+
+class _Table:
+    """Scalar linear interpolation held at the ends; fast enough to call per residual."""
+
+    def __init__(self, x: np.ndarray, y: np.ndarray):
+        self.x, self.y = np.asarray(x, float), np.asarray(y, float)
+        self.xl, self.yl = self.x.tolist(), self.y.tolist()
+        self.slopes = (np.diff(self.y) / np.diff(self.x)).tolist()
+
+    def __call__(self, t: float) -> float:
+        k = bisect.bisect_right(self.xl, t) - 1
+        if k < 0:
+            return self.yl[0]
+        if k >= len(self.slopes):
+            return self.yl[-1]
+        return self.yl[k] + self.slopes[k] * (t - self.xl[k])
+
+    def slope(self, t: float) -> float:
+        k = bisect.bisect_right(self.xl, t) - 1
+        return self.slopes[k] if 0 <= k < len(self.slopes) else 0.0
+
+    def vec(self, t):
+        return np.interp(t, self.x, self.y)
+
+    def vec_slope(self, t):
+        return np.vectorize(self.slope)(t)
+
+
+@dataclass
+class CompiledModel:
+    """Numeric callables of one topology plus the netlist that gives their parameters."""
+
+    netlist: Netlist
+    key: str
+    meta: dict
+    warnings: tuple[str, ...] = ()
+    _fns: Any = field(default=None, repr=False)
+
+    def __getstate__(self):
+        return {"netlist": self.netlist, "key": self.key, "meta": self.meta,
+                "warnings": self.warnings, "_fns": None}
+
+    def __setstate__(self, state):
+        self.__dict__.update(state)
+
+    @property
+    def fns(self):
+        """(residual, jac, parts, observe, initial) bound to this netlist's tables."""
+        if self._fns is None:
+            cached = codegen.load_cached(self.key)
+            if cached is None:  # another machine or a cleared cache: derive again
+                fresh = compile(self.netlist, use_cache=True)
+                cached = (codegen.load_cached(fresh.key) or (None, None))
+            module, _ = cached
+            tables = [_Table(t.x, t.y) for c in self.netlist.components for t in c.tables]
+            self._fns = module.make([t.__call__ for t in tables], [t.slope for t in tables],
+                                    [t.vec for t in tables], [t.vec_slope for t in tables])
+        return self._fns
+
+    @property
+    def state_names(self) -> tuple[str, ...]:
+        return tuple(self.meta["states"])
+
+    @property
+    def probe_names(self) -> tuple[str, ...]:
+        return tuple(self.meta["observed"][: self.meta["n_probes"]])
+
+    @property
+    def shafts(self) -> tuple[str, ...]:
+        return tuple(n for n, (d, _) in self.netlist.nodes.items()
+                     if d == "rotational" and n != "fixed")
+
+    def param_values(self, overrides: Mapping[str, float] | None = None) -> dict[str, float]:
+        """Every run-time parameter [SI] by name, with ``overrides`` applied and validated.
+
+        An override may name a netlist parameter (``La``) or a component parameter
+        (``Ra.R``).
+        """
+        overrides = dict(overrides or {})
+        names = self.meta["params"]
+        unknown = [k for k in overrides if k not in self.netlist.parameters and k not in names]
+        if unknown:
+            raise ParameterError(f"unknown parameter '{unknown[0]}'"
+                                 f"{_near(unknown[0], [*self.netlist.parameters, *names])}; "
+                                 f"`circuitsim check NETLIST` lists them", None)
+        glob = {k: v for k, v in overrides.items() if k in self.netlist.parameters}
+        env = self.netlist.global_values(glob)
+        values: dict[str, float] = {}
+        for comp in self.netlist.components:
+            for name, val in comp.values.items():
+                values[name] = float(overrides[name]) if name in overrides else val.si(env)
+                why = val.param.violation(values[name])
+                if why:
+                    raise ParameterError(f"{name} = {values[name]:g} [{val.unit}]: {why}",
+                                         val.loc, comp.name)
+        return values
+
+    def param_vector(self, overrides: Mapping[str, float] | None = None) -> tuple[float, ...]:
+        values = self.param_values(overrides)
+        return tuple(values[n] for n in self.meta["params"])
+
+    def physics_warnings(self, values: Mapping[str, float]) -> list[str]:
+        out = []
+        for comp in self.netlist.components:
+            local: dict[str, Any] = dict(comp.structure)
+            prefix = f"{comp.name}."
+            for name, v in values.items():
+                if name.startswith(prefix) and "." not in name[len(prefix):]:
+                    local[name[len(prefix):]] = v
+            for k, n in comp.structure.items():
+                if isinstance(n, int) and not isinstance(n, bool):
+                    local[k] = [None] * n
+            inst = comp.cls(comp.name, local)
+            out += [f"{comp.name}: {w}" for w in inst.warnings(local)]
+        return out
+
+    def simulate(self, stop: float | None = None, params: Mapping[str, float] | None = None,
+                 **kw):
+        """Transient from rest (or ``init='op'``); see integrate.simulate for the options."""
+        from .integrate import simulate
+
+        return simulate(self, stop=stop, params=params, **kw)
+
+
+def compile(net: Netlist, use_cache: bool = True) -> CompiledModel:
+    """Derive (or fetch from the cache) the compiled model of a netlist's topology."""
+    key = codegen.cache_key(net.topology_key())
+    cached = codegen.load_cached(key) if use_cache else None
+    if cached is not None:
+        _, meta = cached
+        model = CompiledModel(net, key, meta)
+    else:
+        from . import graph, mna, structure
+
+        cg = graph.build(net)
+        dae = mna.assemble(net)
+        nominal = {}
+        probe = CompiledModel(net, key, {"params": [p.name for p in dae.params]})
+        values = probe.param_values()
+        for p in dae.params:
+            nominal[p] = values[p.name]
+        idx1 = structure.reduce_index(dae, nominal)
+        source, meta = codegen.generate(idx1)
+        meta["graph_warnings"] = list(cg.warnings)
+        codegen.store(key, source, meta)
+        model = CompiledModel(net, key, meta)
+    warn = model.physics_warnings(model.param_values())
+    for w in warn:
+        warnings.warn(w, CircuitWarning, stacklevel=2)
+    model.warnings = tuple(warn)
+    return model
+
+
+def derive(net: Netlist):
+    """The symbolic DAE and its index-1 form (for ``circuitsim equations``/``check``)."""
+    from . import graph, mna, structure
+
+    cg = graph.build(net)
+    dae = mna.assemble(net)
+    probe = CompiledModel(net, "", {"params": [p.name for p in dae.params]})
+    values = probe.param_values()
+    idx1 = structure.reduce_index(dae, {p: values[p.name] for p in dae.params})
+    return cg, dae, idx1

@@ -1,0 +1,559 @@
+"""Load a YAML netlist into a typed, immutable ``Netlist``, with file:line on everything.
+
+Pipeline stage 1. Values are parsed by the restricted expression parser (``expr``), never
+evaluated as code. Units are checked against each parameter's declared unit. Includes are
+merged before anything else; every element keeps the file and line it came from.
+"""
+
+from __future__ import annotations
+
+import difflib
+import hashlib
+import json
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from functools import lru_cache
+from pathlib import Path
+from typing import Any
+
+from . import expr as ex
+from .component import (
+    COMPONENTS,
+    DOMAINS,
+    WAVEFORMS,
+    Component,
+    Option,
+    Param,
+    RecordList,
+    Signal,
+    TableData,
+)
+from .errors import NetlistError, ParameterError, SourceLoc
+from .units import Dim, compatible, explain_mismatch, unit_info
+
+SCHEMA_PATH = Path(__file__).with_name("netlist.schema.json")
+
+
+@dataclass(frozen=True)
+class Value:
+    """One numeric value: its expression tree, where it was written, its unit rule."""
+
+    node: ex.Node
+    loc: SourceLoc
+    param: Param
+    unit: str
+
+    def si(self, env: Mapping[str, float]) -> float:
+        return ex.evaluate(self.node, env)
+
+
+@dataclass(frozen=True)
+class GlobalParam:
+    name: str
+    node: ex.Node
+    loc: SourceLoc
+    dim: Dim | None
+    value: float
+
+
+@dataclass(frozen=True)
+class ComponentSpec:
+    """A component as written: type, port bindings, values (by runtime symbol name)."""
+
+    name: str
+    type: str
+    cls: type[Component]
+    ports: tuple[tuple[str, str], ...]
+    values: Mapping[str, Value]
+    structure: Mapping[str, Any]
+    loc: SourceLoc
+    tables: tuple[TableData, ...] = ()
+
+
+@dataclass(frozen=True)
+class Probe:
+    name: str
+    node: ex.Node
+    text: str
+    loc: SourceLoc
+
+
+@dataclass(frozen=True)
+class Analysis:
+    stop: float = 0.1
+    step: float | None = None
+    rtol: float = 1e-6
+    atol: float = 1e-9
+    max_step: float = 0.0
+    init: str = "rest"
+    window: float = 0.2
+
+
+@dataclass(frozen=True)
+class Netlist:
+    """A parsed netlist: pure data."""
+
+    path: str
+    title: str
+    parameters: Mapping[str, GlobalParam]
+    components: tuple[ComponentSpec, ...]
+    probes: Mapping[str, Probe]
+    analysis: Analysis
+    nodes: Mapping[str, tuple[str, SourceLoc]] = field(default_factory=dict)
+
+    def component(self, name: str) -> ComponentSpec:
+        for c in self.components:
+            if c.name == name:
+                return c
+        raise KeyError(name)
+
+    def global_values(self, overrides: Mapping[str, float] | None = None) -> dict[str, float]:
+        """SI values of the named parameters, re-evaluated with ``overrides`` applied."""
+        env: dict[str, float] = {}
+        overrides = dict(overrides or {})
+        for name, gp in self.parameters.items():  # insertion order is dependency order
+            env[name] = float(overrides.pop(name)) if name in overrides else \
+                ex.evaluate(gp.node, env)
+        return env
+
+    def topology_key(self) -> str:
+        """Hash of everything that changes the equations (not the numbers)."""
+        desc = [(c.name, c.type, c.ports, sorted(c.values), sorted(
+            (k, repr(v)) for k, v in c.structure.items())) for c in self.components]
+        desc.append(sorted((p.name, p.text) for p in self.probes.values()))
+        return hashlib.sha256(json.dumps(desc, default=str).encode()).hexdigest()[:24]
+
+
+def _loc(path: str, node: Any, key: Any = None, index: int | None = None) -> SourceLoc:
+    """Line (1-based) of a ruamel node, of one of its keys, or of one of its items."""
+    try:
+        if key is not None:
+            return SourceLoc(path, node.lc.key(key)[0] + 1)
+        if index is not None:
+            return SourceLoc(path, node.lc.item(index)[0] + 1)
+        return SourceLoc(path, node.lc.line + 1)
+    except (AttributeError, KeyError, TypeError, IndexError):
+        return SourceLoc(path, 0)
+
+
+def _near(name: str, options) -> str:
+    close = difflib.get_close_matches(name, list(options), n=3, cutoff=0.6)
+    return f" (did you mean {', '.join(repr(c) for c in close)}?)" if close else ""
+
+
+@lru_cache(maxsize=1)
+def _schema_validator():
+    import jsonschema
+
+    return jsonschema.Draft202012Validator(json.loads(SCHEMA_PATH.read_text()))
+
+
+def _plain(obj: Any) -> Any:
+    if isinstance(obj, Mapping):
+        return {str(k): _plain(v) for k, v in obj.items()}
+    if isinstance(obj, list):
+        return [_plain(v) for v in obj]
+    if isinstance(obj, float) and not math.isfinite(obj):
+        return str(obj)
+    return obj
+
+
+def _read_yaml(path: Path) -> Any:
+    from ruamel.yaml import YAML
+    from ruamel.yaml.error import MarkedYAMLError, YAMLError
+
+    try:
+        text = path.read_text(encoding="utf-8")
+    except OSError as exc:
+        raise NetlistError(f"cannot read netlist: {exc.strerror}. Check the path.",
+                           SourceLoc(str(path))) from None
+    except UnicodeDecodeError:
+        raise NetlistError("the file is not UTF-8 text", SourceLoc(str(path))) from None
+    yaml = YAML(typ="rt")
+    try:
+        doc = yaml.load(text)
+    except MarkedYAMLError as exc:
+        mark = exc.problem_mark or exc.context_mark
+        line = mark.line + 1 if mark is not None else 0
+        what = (exc.problem or exc.context or "syntax error").strip()
+        raise NetlistError(f"YAML syntax error: {what}. Check indentation, colons and quotes.",
+                           SourceLoc(str(path), line)) from None
+    except (YAMLError, ValueError, TypeError) as exc:
+        raise NetlistError(f"YAML error: {exc}", SourceLoc(str(path))) from None
+    if not isinstance(doc, Mapping):
+        raise NetlistError("a netlist is a YAML mapping with 'components:' (and optionally "
+                           "'parameters:', 'probes:', 'analysis:', 'include:')",
+                           SourceLoc(str(path), 1))
+    errors = sorted(_schema_validator().iter_errors(_plain(doc)), key=lambda e: list(e.path))
+    if errors:
+        err = errors[0]
+        node, loc = doc, _loc(str(path), doc)
+        for part in err.path:
+            try:
+                loc = _loc(str(path), node, key=part) if isinstance(node, Mapping) else \
+                    _loc(str(path), node, index=part)
+                node = node[part]
+            except (KeyError, IndexError, TypeError):
+                break
+        where = "/".join(str(p) for p in err.path) or "top level"
+        raise NetlistError(f"does not match the netlist schema at {where}: {err.message}. "
+                           f"See circuitsim/netlist.schema.json.", loc)
+    return doc
+
+
+@dataclass
+class _Raw:
+    """Merged raw sections of a file and its includes, with locations."""
+
+    params: dict[str, tuple[Any, SourceLoc]] = field(default_factory=dict)
+    comps: list[tuple[Mapping, SourceLoc, str]] = field(default_factory=list)
+    probes: dict[str, tuple[Any, SourceLoc]] = field(default_factory=dict)
+    analysis: dict[str, tuple[Any, SourceLoc]] = field(default_factory=dict)
+    title: str = ""
+
+
+def _gather(path: Path, raw: _Raw, stack: tuple[Path, ...]) -> None:
+    path = path.resolve()
+    if path in stack:
+        chain = " -> ".join(p.name for p in (*stack, path))
+        raise NetlistError(f"include cycle: {chain}", SourceLoc(str(stack[-1])))
+    doc = _read_yaml(path)
+    sp = str(path)
+    for i, inc in enumerate(doc.get("include", []) or []):
+        target = (path.parent / inc)
+        if not target.exists():
+            raise NetlistError(f"included file '{inc}' not found (looked in {path.parent})",
+                               _loc(sp, doc["include"], index=i))
+        _gather(target, raw, (*stack, path))
+    raw.title = str(doc.get("title", raw.title or path.stem))
+    params = doc.get("parameters") or {}
+    for k in params:
+        raw.params[str(k)] = (params[k], _loc(sp, params, key=k))  # later files override
+    comps = doc.get("components") or []
+    for i, c in enumerate(comps):
+        raw.comps.append((c, _loc(sp, comps, index=i), sp))
+    probes = doc.get("probes") or {}
+    for k in probes:
+        raw.probes[str(k)] = (probes[k], _loc(sp, probes, key=k))
+    analysis = doc.get("analysis") or {}
+    for k in analysis:
+        raw.analysis[str(k)] = (analysis[k], _loc(sp, analysis, key=k))
+
+
+def _parse_value(text: Any, loc: SourceLoc, what: str, comp: str | None = None) -> ex.Node:
+    if isinstance(text, bool):
+        raise ParameterError(f"{what} must be a number or expression, not {text}", loc, comp)
+    if isinstance(text, (int, float)):
+        return ex.Node("num", float(text))
+    try:
+        return ex.parse(str(text))
+    except ex.ExprError as exc:
+        raise NetlistError(f"{what}: {exc}. Values are numbers with optional units "
+                           f"('0.87 mH'), parameter names, or arithmetic of those.",
+                           loc, comp) from None
+
+
+def _order_params(raw: _Raw) -> dict[str, GlobalParam]:
+    nodes = {k: _parse_value(v, loc, f"parameter '{k}'") for k, (v, loc) in raw.params.items()}
+    order: list[str] = []
+    state: dict[str, int] = {}
+
+    def visit(name: str, chain: tuple[str, ...]) -> None:
+        if state.get(name) == 2:
+            return
+        if state.get(name) == 1:
+            cyc = " -> ".join((*chain[chain.index(name):], name))
+            raise ParameterError(f"parameters depend on each other in a cycle: {cyc}",
+                                 raw.params[name][1])
+        state[name] = 1
+        for dep in sorted(ex.names(nodes[name])):
+            if dep not in nodes:
+                raise ParameterError(f"parameter '{name}' refers to unknown parameter "
+                                     f"'{dep}'{_near(dep, nodes)}", raw.params[name][1])
+            visit(dep, (*chain, name))
+        state[name] = 2
+        order.append(name)
+
+    for name in nodes:
+        visit(name, ())
+    out: dict[str, GlobalParam] = {}
+    env: dict[str, float] = {}
+    dims: dict[str, Dim | None] = {}
+    for name in order:
+        loc = raw.params[name][1]
+        try:
+            val = ex.evaluate(nodes[name], env)
+            dim = ex.dimension(nodes[name], dims)
+        except (ValueError, ZeroDivisionError, OverflowError) as exc:
+            raise ParameterError(f"parameter '{name}': {exc}", loc) from None
+        if not math.isfinite(val):
+            raise ParameterError(f"parameter '{name}' evaluates to {val}", loc)
+        env[name], dims[name] = val, dim
+        # An expression over unit-less names stays unknowable; a bare number is a wildcard.
+        if nodes[name].kind == "num":
+            dim = None
+        out[name] = GlobalParam(name, nodes[name], loc, dim, val)
+    return out
+
+
+class _Builder:
+    """Turns raw component entries into ComponentSpecs, checking names, units, validity."""
+
+    def __init__(self, params: Mapping[str, GlobalParam], nodes: dict[str, tuple[str,
+                 SourceLoc]]):
+        self.params = params
+        self.env = {k: p.value for k, p in params.items()}
+        self.dims = {k: p.dim for k, p in params.items()}
+        self.nodes = nodes
+        self.n_tables = 0
+
+    def value(self, raw: Any, loc: SourceLoc, comp: str, key: str, param: Param,
+              unit: str, local: Mapping[str, Value] | None = None) -> Value:
+        node = _parse_value(raw, loc, f"parameter '{key}'", comp)
+        for dep in ex.names(node):
+            if dep not in self.params:
+                raise ParameterError(f"parameter '{key}' refers to unknown parameter '{dep}'"
+                                     f"{_near(dep, self.params)}; define it under "
+                                     f"'parameters:'", loc, comp)
+        try:
+            val = ex.evaluate(node, self.env)
+            dim = ex.dimension(node, self.dims)
+        except (ValueError, ZeroDivisionError, OverflowError) as exc:
+            raise ParameterError(f"parameter '{key}': {exc}", loc, comp) from None
+        if dim is not None and unit not in ("1",) and node.kind != "num":
+            _, target = unit_info(unit)
+            if not compatible(dim, target):
+                raise ParameterError(f"parameter '{key}': {explain_mismatch(dim, target, unit)}",
+                                     loc, comp)
+        elif dim is not None and unit == "1" and dim.dims:
+            raise ParameterError(f"parameter '{key}' must be dimensionless, got {dim}", loc, comp)
+        why = param.violation(val)
+        if why:
+            raise ParameterError(f"{key} = {val:g} [{unit}]: {why} ({param.doc})", loc, comp)
+        return Value(node, loc, param, unit)
+
+    def params_of(self, entry: Mapping, decl: Mapping[str, Param], loc_of, comp: str,
+                  prefix: str, unit_at: str, out: dict[str, Value], what: str) -> None:
+        """Fill ``out`` with the values of the declared scalar parameters in ``entry``."""
+        for key in entry:
+            if key not in decl:
+                raise NetlistError(f"unknown {what} '{key}'{_near(str(key), decl)}; "
+                                   f"known: {', '.join(decl) or 'none'}", loc_of(key), comp)
+        local: dict[str, float] = {}
+        for key, p in decl.items():
+            unit = unit_at if p.unit == "@" else p.unit
+            name = f"{prefix}{key}"
+            if key in entry:
+                out[name] = self.value(entry[key], loc_of(key), comp, key, p, unit)
+            elif isinstance(p.default, str):
+                src = out[f"{prefix}{p.default}"]
+                out[name] = Value(src.node, src.loc, p, unit)
+            elif p.default is not None:
+                out[name] = Value(ex.Node("num", float(p.default)), loc_of(None), p, unit)
+            else:
+                raise ParameterError(f"missing parameter '{key}' [{unit}] ({p.doc}); add "
+                                     f"'{key}: <value>'", loc_of(None), comp)
+            local[key] = out[name].si(self.env)
+
+    def component(self, entry: Mapping, loc: SourceLoc, path: str) -> ComponentSpec:
+        name = str(entry["name"])
+        typ = str(entry["type"])
+        cls = COMPONENTS.get(typ)
+        if cls is None:
+            raise NetlistError(f"unknown component type '{typ}'{_near(typ, COMPONENTS)}; "
+                               f"`circuitsim components` lists them", loc, name)
+
+        def loc_of(key: Any) -> SourceLoc:
+            return _loc(path, entry, key=key) if key is not None and key in entry else loc
+
+        ports: list[tuple[str, str]] = []
+        for port in cls.ports:
+            if port.name not in entry:
+                raise NetlistError(f"port '{port.name}' ({port.domain.name}) is not connected; "
+                                   f"add '{port.name}: <node>'", loc, name)
+            node = str(entry[port.name])
+            ports.append((port.name, node))
+            self.bind_node(node, port.domain.name, loc_of(port.name), name, port.name)
+        decl = cls.declared()
+        values: dict[str, Value] = {}
+        structure: dict[str, Any] = {}
+        tables: list[TableData] = []
+        known = {"name", "type", *(p.name for p in cls.ports), *decl}
+        for key in entry:
+            if key not in known:
+                raise NetlistError(f"unknown parameter '{key}' for type '{typ}'"
+                                   f"{_near(str(key), known)}; known: "
+                                   f"{', '.join(sorted(known - {'name', 'type'}))}",
+                                   loc_of(key), name)
+        scalars = {k: d for k, d in decl.items() if isinstance(d, Param)}
+        self.params_of({k: entry[k] for k in scalars if k in entry}, scalars, loc_of, name,
+                       f"{name}.", "1", values, "parameter")
+        for key, d in decl.items():
+            if isinstance(d, Option):
+                val = entry.get(key, d.default)
+                if val not in d.choices:
+                    raise ParameterError(f"option '{key}' must be one of {list(d.choices)}, "
+                                         f"got {val!r}", loc_of(key), name)
+                structure[key] = val
+            elif isinstance(d, RecordList):
+                items = entry.get(key, []) or []
+                if not isinstance(items, list):
+                    raise NetlistError(f"'{key}' must be a list of mappings with fields "
+                                       f"{', '.join(d.fields)}", loc_of(key), name)
+                for i, item in enumerate(items):
+                    iloc = _loc(path, items, index=i)
+                    if not isinstance(item, Mapping):
+                        raise NetlistError(f"{key}[{i}] must be a mapping with fields "
+                                           f"{', '.join(d.fields)}", iloc, name)
+                    self.params_of(item, d.fields, lambda k, it=item, il=iloc:
+                                   _loc(path, it, key=k) if k is not None else il, name,
+                                   f"{name}.{key}[{i}].", "1", values, f"field of {key}")
+                structure[key] = len(items)
+            elif isinstance(d, Signal):
+                kind, n = self.signal(entry.get(key, d.default), loc_of(key), name, key, d,
+                                      values, tables, path)
+                structure[key] = (kind, n)
+        return ComponentSpec(name, typ, cls, tuple(ports), values, structure, loc,
+                             tuple(tables))
+
+    def signal(self, raw: Any, loc: SourceLoc, comp: str, key: str, d: Signal,
+               values: dict[str, Value], tables: list[TableData], path: str) -> tuple[str, int]:
+        if raw is None:
+            raise ParameterError(f"missing parameter '{key}' [{d.unit}] ({d.doc}): a value or a "
+                                 f"waveform ({', '.join(sorted(WAVEFORMS))})", loc, comp)
+        if not isinstance(raw, Mapping):
+            raw = {"dc": {"value": raw}}
+        if len(raw) != 1:
+            raise NetlistError(f"'{key}' takes one waveform, e.g. {{sine: {{amplitude: 1, "
+                               f"freq: 50 Hz}}}}; got {list(raw)}", loc, comp)
+        kind = str(next(iter(raw)))
+        wcls = WAVEFORMS.get(kind)
+        if wcls is None:
+            raise NetlistError(f"unknown waveform '{kind}'{_near(kind, WAVEFORMS)}; known: "
+                               f"{', '.join(sorted(WAVEFORMS))}", loc, comp)
+        body = raw[kind]
+        prefix = f"{comp}.{key}."
+        if kind == "pwl":
+            return kind, self.pwl(body, loc, comp, key, d, values, prefix)
+        if kind == "table":
+            if not isinstance(body, Mapping) or "file" not in body or "column" not in body:
+                raise NetlistError("a table waveform needs {file: data.csv, column: NAME} "
+                                   "(and optionally time: NAME, scale: NUMBER)", loc, comp)
+            tables.append(self.table(body, loc, comp, path))
+            body = {k: v for k, v in body.items() if k not in ("file", "column", "time")}
+        elif not isinstance(body, Mapping):
+            if wcls.scalar_key is None:
+                raise NetlistError(f"waveform '{kind}' needs a mapping of "
+                                   f"{', '.join(wcls.params)}", loc, comp)
+            body = {wcls.scalar_key: body}
+        self.params_of(body, wcls.params, lambda k: loc, comp, prefix, d.unit, values,
+                       f"field of waveform '{kind}'")
+        return kind, 0
+
+    def pwl(self, body: Any, loc: SourceLoc, comp: str, key: str, d: Signal,
+            values: dict[str, Value], prefix: str) -> int:
+        if not isinstance(body, list) or len(body) < 2 or not all(
+                isinstance(p, list) and len(p) == 2 for p in body):
+            raise NetlistError("pwl takes a list of [time, value] pairs, at least two, e.g. "
+                               "[[0, 0], [1 ms, 12 V]]", loc, comp)
+        last = -math.inf
+        for i, (tv, vv) in enumerate(body):
+            tval = self.value(tv, loc, comp, f"pwl time {i}", Param("s", "time",
+                              nonnegative=True), "s")
+            ts = tval.si(self.env)
+            if ts <= last:
+                raise ParameterError(f"pwl times must increase (point {i}: {ts:g} s)", loc, comp)
+            last = ts
+            values[f"{prefix}t{i}"] = tval
+            values[f"{prefix}v{i}"] = self.value(vv, loc, comp, f"pwl value {i}",
+                                                 Param(d.unit, "value"), d.unit)
+        return len(body)
+
+    def table(self, body: Mapping, loc: SourceLoc, comp: str, path: str) -> TableData:
+        from .data import read_column
+
+        file = Path(path).parent / str(body["file"])
+        x, y = read_column(file, str(body["column"]), str(body.get("time", "time")), loc, comp)
+        self.n_tables += 1
+        return TableData(x, y, f"{file.name}:{body['column']}")
+
+    def bind_node(self, node: str, domain: str, loc: SourceLoc, comp: str, port: str) -> None:
+        for d in DOMAINS.values():
+            if node in d.references and d.name != domain:
+                raise NetlistError(f"port '{port}' is {domain} but '{node}' is the {d.name} "
+                                   f"reference; use "
+                                   f"{' or '.join(DOMAINS[domain].references)}", loc, comp)
+        if node in self.nodes and self.nodes[node][0] != domain:
+            other, oloc = self.nodes[node]
+            raise NetlistError(f"port '{port}' is {domain}, but node '{node}' is {other} "
+                               f"(first used at {oloc}): an electrical pin cannot connect to a "
+                               f"shaft; use a coupling component such as 'emf'", loc, comp)
+        self.nodes.setdefault(node, (domain, loc))
+
+
+def load(path: str | Path) -> Netlist:
+    """Read, validate and type a netlist file (with its includes).
+
+    Raises NetlistError / ParameterError naming file, line and component.
+    """
+    import circuitsim_components  # noqa: F401 - fills the registries
+
+    path = Path(path)
+    raw = _Raw()
+    _gather(path, raw, ())
+    params = _order_params(raw)
+    nodes: dict[str, tuple[str, SourceLoc]] = {}
+    b = _Builder(params, nodes)
+    comps: list[ComponentSpec] = []
+    seen: dict[str, SourceLoc] = {}
+    for entry, loc, file in raw.comps:
+        name = str(entry["name"])
+        if name in seen:
+            raise NetlistError(f"component name '{name}' is used twice (also at {seen[name]})",
+                               loc, name)
+        seen[name] = loc
+        comps.append(b.component(entry, loc, file))
+    if not comps:
+        raise NetlistError("the netlist has no components", SourceLoc(str(path), 1))
+    for n, (_, loc) in nodes.items():
+        if n in seen:
+            raise NetlistError(f"'{n}' names both a node and a component; rename one",
+                               loc, n)
+    probes = {}
+    for name, (text, loc) in raw.probes.items():
+        try:
+            node = ex.parse(str(text), allow_unit=False)
+        except ex.ExprError as exc:
+            raise NetlistError(f"probe '{name}': {exc}", loc) from None
+        probes[name] = Probe(name, node, str(text), loc)
+    analysis = _analysis(raw, b)
+    tables = [t for c in comps for t in c.tables]
+    if tables:
+        comps = _index_tables(comps)
+    return Netlist(str(path), raw.title, params, tuple(comps), probes, analysis, nodes)
+
+
+def _index_tables(comps: list[ComponentSpec]) -> list[ComponentSpec]:
+    out, k = [], 0
+    for c in comps:
+        new = []
+        for t in c.tables:
+            new.append(TableData(t.x, t.y, t.label, k))
+            k += 1
+        out.append(ComponentSpec(c.name, c.type, c.cls, c.ports, c.values, {
+            **c.structure, "_tables": tuple(t.label for t in new)}, c.loc, tuple(new)))
+    return out
+
+
+def _analysis(raw: _Raw, b: _Builder) -> Analysis:
+    kw: dict[str, Any] = {}
+    for key, (val, loc) in raw.analysis.items():
+        if key in ("stop", "step", "max_step"):
+            v = b.value(val, loc, "analysis", key, Param("s", key, nonnegative=True), "s")
+            kw[key] = v.si(b.env)
+        else:
+            kw[key] = val
+    if kw.get("stop", 1.0) <= 0:
+        raise ParameterError("analysis stop time must be positive", raw.analysis["stop"][1])
+    return Analysis(**kw)

@@ -1,0 +1,126 @@
+"""Simulation results: solve_ivp-like fields plus access by name to every probe and variable."""
+
+from __future__ import annotations
+
+import difflib
+import os
+import tempfile
+from dataclasses import dataclass, field
+from enum import Enum
+from typing import Any
+
+import numpy as np
+
+from . import signal
+
+
+class Status(Enum):
+    """Outcome of a run; the text says what to try next."""
+
+    OK = (0, "reached the stop time")
+    SOLVER_FAILED = (-1, "the integrator failed")
+    INIT_FAILED = (-2, "no consistent initial values were found")
+
+    @property
+    def ok(self) -> bool:
+        return self.value[0] == 0
+
+
+@dataclass
+class SimResult:
+    """Transient result. ``y`` has shape (n_states, n_points) as in ``solve_ivp``.
+
+    ``res[name]`` gives a probe, a state, or any eliminated variable (``R1.v``, ``a.v``,
+    ``rotor.w``, ``M1.shaft.tau``); ``res.names`` lists them all.
+    """
+
+    t: np.ndarray
+    y: np.ndarray
+    yp: np.ndarray
+    states: tuple[str, ...]
+    status: Status
+    detail: str
+    nfev: int
+    njev: int
+    model: Any = field(repr=False)
+    params: tuple[float, ...] = field(repr=False, default=())
+    _obs: dict[str, np.ndarray] | None = field(default=None, repr=False)
+
+    @property
+    def success(self) -> bool:
+        return self.status.ok
+
+    @property
+    def message(self) -> str:
+        return f"{self.status.value[1]}: {self.detail}" if self.detail else self.status.value[1]
+
+    @property
+    def probes(self) -> tuple[str, ...]:
+        return self.model.probe_names
+
+    @property
+    def names(self) -> tuple[str, ...]:
+        return tuple(dict.fromkeys((*self.model.meta["observed"], *self.states)))
+
+    def _observed(self) -> dict[str, np.ndarray]:
+        if self._obs is None:
+            _, _, _, observe, _ = self.model.fns
+            vals = observe(self.t, self.y, self.yp, self.params)
+            n = len(self.t)
+            self._obs = {k: np.broadcast_to(np.asarray(v, float), (n,)).copy()
+                         for k, v in zip(self.model.meta["observed"], vals, strict=True)}
+        return self._obs
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        obs = self._observed()
+        if name in obs:
+            return obs[name]
+        if name in self.states:
+            return self.y[self.states.index(name)]
+        close = difflib.get_close_matches(name, list(self.names), n=4, cutoff=0.5)
+        hint = f"; did you mean {', '.join(close)}?" if close else ""
+        raise KeyError(f"no probe or variable '{name}'{hint}")
+
+    def window(self, fraction: float = 0.2) -> np.ndarray:
+        """Mask of the last ``fraction`` of the run (the steady window)."""
+        return self.t >= self.t[-1] - fraction * (self.t[-1] - self.t[0])
+
+    def shaft_frequency(self, fraction: float = 0.2, shaft: str | None = None) -> float:
+        """Mean rotation frequency [rev/s] of a shaft over the window."""
+        shafts = self.model.shafts
+        if shaft is None:
+            if len(shafts) != 1:
+                raise ValueError(f"say which shaft (one of {', '.join(shafts) or 'none'})")
+            shaft = shafts[0]
+        m = self.window(fraction)
+        return float(np.mean(self[f"{shaft}.w"][m]) / (2 * np.pi))
+
+    def harmonic(self, name: str, order: float | None = None, frequency: float | None = None,
+                 window: float = 0.2, shaft: str | None = None) -> signal.Harmonic:
+        """Frequency [Hz] and amplitude of one harmonic of a probe over the steady window.
+
+        ``order`` counts per shaft revolution (the 8th order of a 2-pole 8-slot motor);
+        ``frequency`` [Hz] is a guess refined by the fit; neither: the dominant ripple.
+        """
+        m = self.window(window)
+        if order is not None:
+            frequency = order * self.shaft_frequency(window, shaft)
+        if frequency is None:
+            return signal.dominant_ripple(self.t[m], self[name][m])
+        return signal.harmonic(self.t[m], self[name][m], near=frequency)
+
+    def to_csv(self, path: str | os.PathLike, names: list[str] | None = None) -> None:
+        """Write time and the named series (default: probes, else states), atomically."""
+        names = list(names or self.probes or self.states)
+        data = np.column_stack([self.t] + [self[n] for n in names])
+        d = os.path.dirname(os.path.abspath(path))
+        fd, tmp = tempfile.mkstemp(dir=d, prefix=".circuitsim-", suffix=".csv")
+        try:
+            with os.fdopen(fd, "w", encoding="utf-8") as fh:
+                fh.write(",".join(["time", *names]) + "\n")
+                np.savetxt(fh, data, delimiter=",", fmt="%.12g")
+            os.replace(tmp, path)
+        except BaseException:
+            if os.path.exists(tmp):
+                os.unlink(tmp)
+            raise

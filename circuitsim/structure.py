@@ -1,0 +1,332 @@
+"""Structural index reduction: alias elimination, Pantelides, dummy derivatives.
+
+Pipeline stage 4. Turns the MNA DAE (index up to 2 or more: inductor cut-sets, capacitor /
+voltage-source loops, inertias tied by constraints) into an index-1 DAE for IDA, generally:
+
+1. Alias / linear elimination: an equation linear in an unknown with a constant numeric
+   coefficient is solved for it and substituted. For a differentiated unknown (x = a y + b(t)
+   with y a state) its derivative is substituted too, which is exactly how series inductors
+   or a capacitor across a source lose their extra index.
+2. Pantelides' algorithm on the equation / highest-derivative bipartite graph finds the
+   equations that must be differentiated.
+3. Dummy derivatives (Mattsson & Soederlind 1993) replace enough derivatives by algebraic
+   unknowns for the differentiated system to be index 1 and not over-determined.
+4. Elimination again, then a perfect matching proves the result structurally index 1.
+
+No topology is special-cased: everything works on the equations and their incidence.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+import networkx as nx
+import numpy as np
+import sympy as sp
+
+from .errors import SingularCircuitError
+from .mna import BreakSource, Dae
+
+
+@dataclass(frozen=True)
+class IndexOneDae:
+    """The index-1 system handed to code generation.
+
+    ``states`` = differential unknowns (first ``n_diff``) then algebraic unknowns; ``yp`` the
+    derivative symbol of each. ``solved`` maps every eliminated unknown or derivative to an
+    expression of (t, states, yp, params), so nothing is lost for probing.
+    """
+
+    t: sp.Symbol
+    states: tuple[sp.Symbol, ...]
+    yp: tuple[sp.Symbol, ...]
+    n_diff: int
+    equations: tuple[sp.Expr, ...]
+    origins: tuple[str, ...]
+    params: tuple[sp.Symbol, ...]
+    solved: Mapping[sp.Symbol, sp.Expr]
+    exports: Mapping[str, sp.Expr]
+    probes: Mapping[str, sp.Expr]
+    initial: Mapping[sp.Symbol, sp.Expr]
+    tables: tuple
+    breaks: tuple[BreakSource, ...]
+    units: Mapping[str, str]
+    report: tuple[str, ...]
+
+    def pretty(self, latex: bool = False) -> str:
+        subs = {d: sp.Symbol(f"{s.name}'") for s, d in zip(self.states, self.yp, strict=True)}
+        out = []
+        for eq, origin in zip(self.equations, self.origins, strict=True):
+            e = eq.xreplace(subs)
+            out.append(f"{sp.latex(e)} = 0 \\quad \\text{{({origin})}}" if latex
+                       else f"0 = {e}    [{origin}]")
+        return "\n".join(out)
+
+
+class _System:
+    """Mutable working copy of the equations during reduction."""
+
+    def __init__(self, dae: Dae):
+        self.t = dae.t
+        self.eqs: list[sp.Expr] = list(dae.equations)
+        self.origins: list[str] = list(dae.origins)
+        self.unknowns: set[sp.Symbol] = set(dae.unknowns)
+        self.der: dict[sp.Symbol, sp.Symbol] = dict(dae.der)
+        self.anti: dict[sp.Symbol, sp.Symbol] = {d: u for u, d in self.der.items()}
+        self.solved: dict[sp.Symbol, sp.Expr] = {}
+        self.params = set(dae.params)
+        self.report: list[str] = []
+
+    def der_of(self, s: sp.Symbol) -> sp.Symbol:
+        if s not in self.der:
+            d = sp.Symbol(f"der({s.name})", real=True)
+            self.der[s] = d
+            self.anti[d] = s
+        return self.der[s]
+
+    def variables(self) -> set[sp.Symbol]:
+        return self.unknowns | set(self.anti)
+
+    def incidence(self, e: sp.Expr) -> set[sp.Symbol]:
+        return e.free_symbols & self.variables()
+
+    def used(self) -> set[sp.Symbol]:
+        out: set[sp.Symbol] = set()
+        for e in self.eqs:
+            out |= e.free_symbols
+        return out
+
+    def differentiate(self, e: sp.Expr) -> sp.Expr:
+        """Total time derivative (chain rule over unknowns and their derivatives)."""
+        out = sp.diff(e, self.t)
+        for s in self.incidence(e):
+            out += sp.diff(e, s) * self.der_of(s)
+        return out
+
+    def substitute(self, mapping: Mapping[sp.Symbol, sp.Expr]) -> None:
+        self.eqs = [e.xreplace(mapping) for e in self.eqs]
+        self.solved = {k: v.xreplace(mapping) for k, v in self.solved.items()}
+        self.solved.update(mapping)
+
+
+def _linear_coeff(e: sp.Expr, v: sp.Symbol) -> sp.Expr | None:
+    """Coefficient of v if e is linear in v with a constant numeric coefficient."""
+    c = sp.diff(e, v)
+    if c.free_symbols or not c.is_number or c == 0:
+        return None
+    return c
+
+
+def eliminate(sys: _System) -> int:
+    """Solve-and-substitute every equation linear in an unknown with a numeric coefficient.
+
+    Returns how many unknowns were eliminated.
+    """
+    count = 0
+    while True:
+        used = sys.used()
+        differentiated = {u for u in sys.unknowns if sys.der.get(u) in used}
+        done = False
+        order = sorted(range(len(sys.eqs)), key=lambda k: len(sys.incidence(sys.eqs[k])))
+        for k in order:
+            e = sys.eqs[k]
+            inc = sys.incidence(e)
+            cands = sorted((v for v in inc if v in sys.unknowns),
+                           key=lambda v: (v in differentiated, -v.name.count("."), v.name))
+            for v in cands:
+                c = _linear_coeff(e, v)
+                if c is None or sys.der.get(v) in inc:
+                    continue
+                rest = sp.expand(v - e / c) if len(e.args) < 8 else v - e / c
+                rest_inc = sys.incidence(rest)
+                mapping = {v: rest}
+                if v in differentiated:
+                    # Substituting a state is only exact if its derivative is known too, and
+                    # that stays index-preserving only when rest depends on states and t alone.
+                    if any(s in sys.anti or s not in differentiated for s in rest_inc):
+                        continue
+                    mapping[sys.der[v]] = sys.differentiate(rest)
+                del sys.eqs[k]
+                del sys.origins[k]
+                sys.unknowns.discard(v)
+                sys.substitute(mapping)
+                count += 1
+                done = True
+                break
+            if done:
+                break
+        if not done:
+            sys.eqs = [e for e in sys.eqs]
+            return count
+
+
+def _highest(sys: _System, used: set[sp.Symbol]) -> list[sp.Symbol]:
+    """Unknowns and derivatives that appear and are not themselves differentiated."""
+    return [v for v in sys.variables() if v in used and sys.der.get(v) not in used]
+
+
+def _match(sys: _System, eqs: list[int], cols: list[sp.Symbol]) -> dict:
+    g = nx.Graph()
+    g.add_nodes_from((("e", i) for i in eqs), bipartite=0)
+    g.add_nodes_from((("v", v) for v in cols), bipartite=1)
+    colset = set(cols)
+    for i in eqs:
+        for v in sys.incidence(sys.eqs[i]) & colset:
+            g.add_edge(("e", i), ("v", v))
+    return nx.bipartite.maximum_matching(g, top_nodes=[("e", i) for i in eqs])
+
+
+def pantelides(sys: _System) -> list[int | None]:
+    """Pantelides (1988): differentiate equations until the highest derivatives match.
+
+    Returns B: B[i] is the index of the derivative of equation i (None if not differentiated).
+    """
+    B: list[int | None] = [None] * len(sys.eqs)
+    used = sys.used()
+    D: dict[sp.Symbol, sp.Symbol] = {v: d for v, d in sys.der.items() if d in used}
+    assign: dict[sp.Symbol, int] = {}
+    inc = [sys.incidence(e) for e in sys.eqs]
+
+    def augment(i: int, ce: set[int], cv: set[sp.Symbol]) -> bool:
+        ce.add(i)
+        cands = [j for j in inc[i] if j not in D]
+        for j in cands:
+            if j not in assign:
+                assign[j] = i
+                return True
+        for j in cands:
+            if j not in cv:
+                cv.add(j)
+                if augment(assign[j], ce, cv):
+                    assign[j] = i
+                    return True
+        return False
+
+    n0 = len(sys.eqs)
+    for k in range(n0):
+        i = k
+        for _ in range(4 * n0 + 4):
+            ce: set[int] = set()
+            cv: set[sp.Symbol] = set()
+            if augment(i, ce, cv):
+                break
+            for j in cv:
+                D[j] = sys.der_of(j)
+            for lq in sorted(ce):
+                sys.eqs.append(sp.expand(sys.differentiate(sys.eqs[lq])))
+                sys.origins.append(f"d/dt of ({sys.origins[lq]})")
+                inc.append(sys.incidence(sys.eqs[-1]))
+                B[lq] = len(sys.eqs) - 1
+                B.append(None)
+            for j in cv:
+                assign[D[j]] = B[assign[j]]  # type: ignore[assignment]
+            i = B[i]  # type: ignore[assignment]
+        else:
+            raise SingularCircuitError(
+                f"the equations are structurally singular: equation '{sys.origins[k]}' cannot "
+                f"be matched to an unknown even after differentiation. The circuit "
+                f"over-determines some quantity (e.g. two ideal sources fixing the same "
+                f"voltage or speed)")
+    return B
+
+
+def dummy_derivatives(sys: _System, B: list[int | None], nominal: Mapping[sp.Symbol, float]
+                      ) -> None:
+    """Mattsson-Soederlind: pick derivatives to become algebraic (dummy) unknowns."""
+    pred = {b: i for i, b in enumerate(B) if b is not None}
+    used = sys.used()
+    level_eqs = [i for i in range(len(sys.eqs)) if B[i] is None and i in pred]
+    cands = [v for v in _highest(sys, used) if v in sys.anti]
+    dummies: list[sp.Symbol] = []
+    while level_eqs:
+        cols = [v for v in cands if any(v in sys.incidence(sys.eqs[i]) for i in level_eqs)]
+        M = np.array([[_num(sp.diff(sys.eqs[i], v), nominal) for v in cols]
+                      for i in level_eqs], dtype=float)
+        if len(cols) < len(level_eqs):
+            raise SingularCircuitError("index reduction failed: fewer derivatives than "
+                                       "differentiated constraints (" +
+                                       ", ".join(sys.origins[i] for i in level_eqs) + ")")
+        import scipy.linalg as sla
+
+        _, r, piv = sla.qr(M, pivoting=True)
+        rank = int(np.sum(np.abs(np.diag(r)) > 1e-10 * max(1.0, np.abs(r).max())))
+        if rank < len(level_eqs):
+            raise SingularCircuitError("index reduction failed: the differentiated constraints "
+                                       "are singular (" + ", ".join(sys.origins[i] for i in
+                                                                     level_eqs) + ")")
+        chosen = [cols[j] for j in piv[: len(level_eqs)]]
+        dummies += chosen
+        level_eqs = [pred[i] for i in level_eqs if pred[i] in pred]
+        cands = [sys.anti[v] for v in chosen if sys.anti[v] in sys.anti]
+    mapping = {}
+    for d in dummies:
+        dd = sp.Symbol(f"dummy({d.name})", real=True)
+        sys.unknowns.add(dd)
+        mapping[d] = dd
+        sys.report.append(f"dummy derivative: {d.name} becomes algebraic")
+    sys.eqs = [e.xreplace(mapping) for e in sys.eqs]
+    sys.solved = {k: v.xreplace(mapping) for k, v in sys.solved.items()}
+    sys.solved.update(mapping)
+
+
+def _num(e: sp.Expr, nominal: Mapping[sp.Symbol, float]) -> float:
+    vals = {s: nominal.get(s, 0.5 + 0.1 * (hash(s.name) % 7)) for s in e.free_symbols}
+    return float(e.xreplace(vals).evalf()) if vals or e.is_number else 0.0
+
+
+def reduce_index(dae: Dae, nominal: Mapping[sp.Symbol, float]) -> IndexOneDae:
+    """Make the DAE index 1 (see module docstring); ``nominal`` are parameter values used
+    only to choose dummy derivatives numerically."""
+    sys = _System(dae)
+    n0 = len(sys.unknowns)
+    eliminate(sys)
+    sys.report.append(f"alias/linear elimination: {n0} -> {len(sys.unknowns)} unknowns")
+    if not _is_index_one(sys):
+        B = pantelides(sys)
+        n_diff = sum(b is not None for b in B)
+        sys.report.append(f"Pantelides: differentiated {n_diff} equation(s)")
+        dummy_derivatives(sys, B, nominal)
+        eliminate(sys)
+        sys.report.append(f"after index reduction: {len(sys.unknowns)} unknowns")
+    _check_square(sys)
+    used = sys.used()
+    diff = sorted((u for u in sys.unknowns if sys.der.get(u) in used), key=lambda s: s.name)
+    alg = sorted((u for u in sys.unknowns if sys.der.get(u) not in used), key=lambda s: s.name)
+    if not _is_index_one(sys):
+        raise SingularCircuitError("could not reduce the circuit to index 1: " +
+                                   _unmatched(sys))
+    states = tuple(diff + alg)
+    yp = tuple(sys.der_of(s) for s in states)
+    resolve = dict(sys.solved)
+    exports = {k: sp.sympify(v).xreplace(resolve) for k, v in dae.exports.items()}
+    probes = {k: sp.sympify(v).xreplace(resolve) for k, v in dae.probes.items()}
+    return IndexOneDae(dae.t, states, yp, len(diff), tuple(sys.eqs), tuple(sys.origins),
+                       dae.params, resolve, exports, probes, dict(dae.initial), dae.tables,
+                       dae.breaks, dae.units, tuple(sys.report))
+
+
+def _check_square(sys: _System) -> None:
+    if len(sys.eqs) != len(sys.unknowns):
+        raise SingularCircuitError(
+            f"{len(sys.eqs)} equations for {len(sys.unknowns)} unknowns: " + _unmatched(sys))
+
+
+def _is_index_one(sys: _System) -> bool:
+    used = sys.used()
+    cols = [sys.der[u] if sys.der.get(u) in used else u for u in sys.unknowns]
+    if len(cols) != len(sys.eqs):
+        return False
+    m = _match(sys, list(range(len(sys.eqs))), cols)
+    return sum(1 for k in m if k[0] == "e") == len(sys.eqs)
+
+
+def _unmatched(sys: _System) -> str:
+    used = sys.used()
+    cols = [sys.der[u] if sys.der.get(u) in used else u for u in sys.unknowns]
+    m = _match(sys, list(range(len(sys.eqs))), cols)
+    eqs = [sys.origins[i] for i in range(len(sys.eqs)) if ("e", i) not in m]
+    vs = [v.name for v in cols if ("v", v) not in m]
+    return (f"no unknown left for {'; '.join(eqs) or 'none'}; undetermined: "
+            f"{', '.join(vs) or 'none'}. Look for ideal sources or constraints that fix the "
+            f"same quantity twice, or a node only reachable through current sources")

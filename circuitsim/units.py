@@ -1,0 +1,115 @@
+"""Units: parse quantities with pint, check dimensions, convert to SI floats.
+
+Angles are dimensionless in SI, so pint alone cannot tell ``rad/s`` from ``Hz``. A rotation
+given in Hz is ambiguous by 2*pi, so we count the exponent of angle units on both sides and
+refuse a mismatch.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import functools
+from dataclasses import dataclass
+
+ANGLE_UNITS = frozenset({"radian", "degree", "revolution", "turn", "arcminute", "arcsecond",
+                         "gradian", "revolutions_per_minute", "revolutions_per_second", "rev",
+                         "rps"})
+# Exponent of angle carried by composite angle units pint keeps as one name.
+_ANGLE_EXP = {"revolutions_per_minute": 1, "revolutions_per_second": 1, "rps": 1}
+
+
+@functools.lru_cache(maxsize=1)
+def registry():
+    """The shared pint registry (created lazily: importing pint costs ~0.4 s)."""
+    import pint
+
+    try:
+        ureg = pint.UnitRegistry(cache_folder=":auto:")
+    except Exception:  # noqa: BLE001 - an unwritable cache folder must not stop a run
+        ureg = pint.UnitRegistry()
+    for line in ("rev = revolution", "rps = revolution / second"):
+        # a pint version that already defines the name keeps its own definition
+        with contextlib.suppress(Exception):
+            ureg.define(line)
+    return ureg
+
+
+@dataclass(frozen=True, slots=True)
+class Dim:
+    """Physical dimension: pint dimensionality plus the angle exponent pint drops."""
+
+    dims: tuple[tuple[str, float], ...]
+    angle: float
+
+    def __str__(self) -> str:
+        parts = [f"{k.strip('[]')}^{v:g}" for k, v in self.dims]
+        if self.angle:
+            parts.append(f"angle^{self.angle:g}")
+        return "·".join(parts) or "dimensionless"
+
+
+def angle_exponent(units) -> float:
+    """Sum of exponents of angle units in a pint UnitsContainer."""
+    total = 0.0
+    for name, exp in units.items():
+        if name in ANGLE_UNITS:
+            total += exp * _ANGLE_EXP.get(name, 1)
+    return total
+
+
+@functools.lru_cache(maxsize=512)
+def unit_info(unit: str) -> tuple[float, Dim]:
+    """SI factor and dimension of a unit string such as ``"mH"`` or ``"V*s/rad"``.
+
+    Raises ValueError when pint does not know the unit.
+    """
+    ureg = registry()
+    if unit.strip() in ("", "1"):
+        return 1.0, Dim((), 0.0)
+    try:
+        q = ureg.Quantity(1.0, ureg.parse_units(unit))
+    except Exception as exc:  # pint raises several unrelated types
+        raise ValueError(f"unknown unit '{unit}'") from exc
+    return _si_and_dim(q)
+
+
+def _si_and_dim(q) -> tuple[float, Dim]:
+    ang = angle_exponent(q._units)
+    base = q.to_base_units()
+    dims = tuple(sorted((str(k), float(v)) for k, v in base.dimensionality.items()))
+    return float(base.magnitude), Dim(dims, ang)
+
+
+def dimensionless() -> Dim:
+    return Dim((), 0.0)
+
+
+def dim_mul(a: Dim, b: Dim, power: float = 1.0) -> Dim:
+    """Dimension of a * b**power."""
+    acc: dict[str, float] = dict(a.dims)
+    for k, v in b.dims:
+        acc[k] = acc.get(k, 0.0) + power * v
+    dims = tuple(sorted((k, v) for k, v in acc.items() if abs(v) > 1e-12))
+    return Dim(dims, a.angle + power * b.angle)
+
+
+def dim_pow(a: Dim, power: float) -> Dim:
+    return Dim(tuple((k, v * power) for k, v in a.dims), a.angle * power)
+
+
+def compatible(value: Dim, target: Dim) -> bool:
+    """True when a value of dimension ``value`` may be used where ``target`` is declared."""
+    return value.dims == target.dims and abs(value.angle - target.angle) < 1e-12
+
+
+def explain_mismatch(value: Dim, target: Dim, target_unit: str) -> str:
+    """Say why two dimensions do not match, in words a user can act on."""
+    if value.dims == target.dims:
+        if target.angle and not value.angle:
+            return (f"a rotation must carry an angle unit (rad/s, rpm or rev/s), never Hz: "
+                    f"Hz is ambiguous by 2*pi; write it in {target_unit}")
+        if value.angle and not target.angle:
+            return (f"this quantity is not per angle: give it in {target_unit} "
+                    f"(a frequency in Hz, not rad/s)")
+        return f"the angle units do not match {target_unit}"
+    return f"has dimension {value}, expected {target} (a value in {target_unit})"

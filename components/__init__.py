@@ -1,0 +1,9 @@
+"""circuitsim's component library. Importing it fills the registries.
+
+Each module is one family; each class states ports, parameters with units, and sympy
+equations, and nothing else. Nothing here imports the solver.
+"""
+
+from . import emf, mechanical, passive, sources, varistor, waveforms
+
+__all__ = ["emf", "mechanical", "passive", "sources", "varistor", "waveforms"]

@@ -1,0 +1,70 @@
+"""Independent sources: voltage, current, torque and force, each driven by a waveform."""
+
+from __future__ import annotations
+
+from circuitsim.component import Branch, OneFlange, OnePort, OneTFlange, Signal, register
+
+
+@register("V", "vsource")
+class VoltageSource(OnePort):
+    """Ideal voltage source: v = V(t). Its current i flows into p (negative when delivering).
+
+    Parameters
+    ----------
+    V : [V] value or waveform (dc, step, sine, pulse, pwm, pwl, table)
+    """
+
+    branches = (Branch("p", "n", "V"),)
+    V = Signal("V", "source voltage")
+
+    def equations(self, x):
+        return [x.v - self.V]
+
+
+@register("I", "isource")
+class CurrentSource(OnePort):
+    """Ideal current source: i = I(t), flowing from p through the source to n.
+
+    Parameters
+    ----------
+    I : [A] value or waveform
+    """
+
+    branches = (Branch("p", "n", "I"),)
+    I = Signal("A", "source current")
+
+    def equations(self, x):
+        return [x.i - self.I]
+
+
+@register("torque")
+class TorqueSource(OneFlange):
+    """Torque T(t) applied to a shaft against the fixed reference (positive T accelerates
+    positive rotation; the flow into the source's flange is -T).
+
+    Parameters
+    ----------
+    T : [N*m] value or waveform (a load torque is a negative T)
+    """
+
+    branches = (Branch("shaft", None, "I"),)
+    T = Signal("N*m", "torque delivered to the shaft")
+
+    def equations(self, x):
+        return [x.tau + self.T]
+
+
+@register("force")
+class ForceSource(OneTFlange):
+    """Force applied to a translational flange against the fixed reference.
+
+    Parameters
+    ----------
+    F : [N] value or waveform
+    """
+
+    branches = (Branch("flange", None, "I"),)
+    F = Signal("N", "force delivered to the flange")
+
+    def equations(self, x):
+        return [x.f + self.F]

@@ -1,0 +1,144 @@
+"""Source waveforms: small functions of time with numeric parameters.
+
+A source element takes one of these as its Signal parameter (as Modelica separates a
+VoltageSource from its signal block). ``@`` as a unit means "the unit of the signal".
+"""
+
+from __future__ import annotations
+
+from typing import ClassVar
+
+import sympy as sp
+
+from circuitsim.component import Lookup, Param, Pmod, Waveform, register_waveform
+
+
+def _ramp(u):
+    """0 below 0, u in [0, 1), 1 above: a clamped linear ramp."""
+    return sp.Piecewise((0, u < 0), (u, u < 1), (1, True))
+
+
+@register_waveform("dc")
+class Dc(Waveform):
+    """Constant: value."""
+
+    params: ClassVar[dict[str, Param]] = {"value": Param("@", "value")}
+    scalar_key = "value"
+
+    def expr(self, t, p, data=None):
+        return p["value"]
+
+
+@register_waveform("step")
+class Step(Waveform):
+    """v0 before t0, ramping linearly to v1 over ``rise``."""
+
+    params: ClassVar[dict[str, Param]] = {"v0": Param("@", "initial value", default=0.0), "v1": Param("@", "final value"),
+              "t0": Param("s", "step time", default=0.0, nonnegative=True),
+              "rise": Param("s", "rise time", default=1e-9, positive=True)}
+
+    def expr(self, t, p, data=None):
+        return p["v0"] + (p["v1"] - p["v0"]) * _ramp((t - p["t0"]) / p["rise"])
+
+    def breakpoints(self, p, t_stop):
+        return [p["t0"], p["t0"] + p["rise"]]
+
+
+@register_waveform("sine")
+class Sine(Waveform):
+    """offset + amplitude * sin(2 pi freq t + phase)."""
+
+    params: ClassVar[dict[str, Param]] = {"offset": Param("@", "offset", default=0.0), "amplitude": Param("@", "amplitude"),
+              "freq": Param("Hz", "frequency", positive=True),
+              "phase": Param("rad", "phase at t = 0", default=0.0)}
+
+    def expr(self, t, p, data=None):
+        return p["offset"] + p["amplitude"] * sp.sin(2 * sp.pi * p["freq"] * t + p["phase"])
+
+
+@register_waveform("pulse")
+class Pulse(Waveform):
+    """SPICE PULSE: v1, then after ``delay`` a trapezoid to v2 repeating every ``period``."""
+
+    params: ClassVar[dict[str, Param]] = {"v1": Param("@", "low value", default=0.0), "v2": Param("@", "high value"),
+              "delay": Param("s", "delay", default=0.0, nonnegative=True),
+              "rise": Param("s", "rise time", default=1e-9, positive=True),
+              "fall": Param("s", "fall time", default=1e-9, positive=True),
+              "width": Param("s", "pulse width", positive=True),
+              "period": Param("s", "period", positive=True)}
+
+    def expr(self, t, p, data=None):
+        tau = Pmod(t - p["delay"], p["period"])
+        r, w, f = p["rise"], p["width"], p["fall"]
+        shape = sp.Piecewise((tau / r, tau < r), (1, tau < r + w), (1 - (tau - r - w) / f,
+                             tau < r + w + f), (0, True))
+        return p["v1"] + (p["v2"] - p["v1"]) * sp.Piecewise((0, t < p["delay"]), (shape, True))
+
+    def breakpoints(self, p, t_stop):
+        out, k = [], 0
+        while True:
+            start = p["delay"] + k * p["period"]
+            if start > t_stop:
+                return out
+            out += [start, start + p["rise"], start + p["rise"] + p["width"],
+                    start + p["rise"] + p["width"] + p["fall"]]
+            k += 1
+
+
+@register_waveform("pwm")
+class Pwm(Pulse):
+    """Pulse-width modulation: low/high at ``freq`` with ``duty`` in [0, 1]."""
+
+    params: ClassVar[dict[str, Param]] = {"low": Param("@", "low value", default=0.0), "high": Param("@", "high value"),
+              "freq": Param("Hz", "switching frequency", positive=True),
+              "duty": Param("1", "duty cycle", nonnegative=True),
+              "rise": Param("s", "edge time", default=1e-7, positive=True)}
+
+    @staticmethod
+    def _as_pulse(p):
+        period = 1 / p["freq"]
+        return {"v1": p["low"], "v2": p["high"], "delay": 0 * period, "rise": p["rise"],
+                "fall": p["rise"], "width": p["duty"] * period, "period": period}
+
+    def expr(self, t, p, data=None):
+        return super().expr(t, self._as_pulse(p))
+
+    def breakpoints(self, p, t_stop):
+        return super().breakpoints(self._as_pulse(p), t_stop)
+
+
+@register_waveform("table")
+class Table(Waveform):
+    """A column of a CSV file, linearly interpolated in time (held at the ends).
+
+    Netlist: ``{table: {file: data.csv, column: v_in, time: time, scale: 1}}``.
+    """
+
+    params: ClassVar[dict[str, Param]] = {"scale": Param("1", "factor applied to the column", default=1.0)}
+
+    def expr(self, t, p, data=None):
+        return p["scale"] * Lookup(sp.Integer(data.index), t)
+
+
+@register_waveform("pwl")
+class Pwl(Waveform):
+    """Piecewise linear through [t_k, v_k] points, held constant outside them.
+
+    Netlist: ``{pwl: [[0, 0], [1 ms, 12 V]]}``.
+    """
+
+    params: ClassVar[dict[str, Param]] = {}
+
+    def expr(self, t, p, data=None):
+        n = len(p) // 2
+        ts = [p[f"t{k}"] for k in range(n)]
+        vs = [p[f"v{k}"] for k in range(n)]
+        pieces = [(vs[0], t < ts[0])]
+        for k in range(n - 1):
+            slope = (vs[k + 1] - vs[k]) / (ts[k + 1] - ts[k])
+            pieces.append((vs[k] + slope * (t - ts[k]), t < ts[k + 1]))
+        pieces.append((vs[-1], True))
+        return sp.Piecewise(*pieces)
+
+    def breakpoints(self, p, t_stop):
+        return [v for k, v in p.items() if k.startswith("t")]

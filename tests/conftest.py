@@ -1,0 +1,47 @@
+"""Shared fixtures: an isolated model cache, netlist helpers, the reference modules on path."""
+
+from __future__ import annotations
+
+import os
+import sys
+import textwrap
+import warnings
+from pathlib import Path
+
+import pytest
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parent
+NETLISTS = ROOT / "netlists"
+sys.path.insert(0, str(HERE))
+
+
+@pytest.fixture(scope="session", autouse=True)
+def _isolated_cache(tmp_path_factory):
+    """Every test session derives into its own cache (a stale one can hide a bug)."""
+    os.environ["CIRCUITSIM_CACHE"] = str(tmp_path_factory.mktemp("cache"))
+
+
+@pytest.fixture
+def write_netlist(tmp_path):
+    """Write YAML text (dedented) to a file and return its path."""
+
+    def write(text: str, name: str = "net.yaml") -> Path:
+        p = tmp_path / name
+        p.write_text(textwrap.dedent(text).lstrip("\n"), encoding="utf-8")
+        return p
+
+    return write
+
+
+@pytest.fixture
+def compile_text(write_netlist):
+    """Load and compile YAML text; physics warnings are silenced."""
+    import circuitsim as cs
+
+    def build(text: str):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            return cs.compile(cs.load(write_netlist(text)))
+
+    return build
