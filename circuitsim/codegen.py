@@ -33,10 +33,25 @@ def cache_dir() -> Path:
     return base
 
 
+def _code_fingerprint() -> str:
+    """Hash of the derivation code and the component library, so an edited component or
+    pipeline stage never meets a stale cached model."""
+    import circuitsim_components
+
+    h = hashlib.sha256()
+    core = Path(__file__).parent
+    for d in (core, Path(circuitsim_components.__file__).parent):
+        for f in sorted(d.glob("*.py")):
+            if f.name not in ("cli.py", "signal.py", "result.py"):
+                h.update(f.read_bytes())
+    return h.hexdigest()[:16]
+
+
 def cache_key(topology: str) -> str:
     import circuitsim
 
-    raw = f"{topology}|{CODEGEN_VERSION}|{circuitsim.__version__}|{sys.version_info[:2]}"
+    raw = (f"{topology}|{CODEGEN_VERSION}|{circuitsim.__version__}|{sys.version_info[:2]}|"
+           f"{_code_fingerprint()}")
     return "m" + hashlib.sha256(raw.encode()).hexdigest()[:24]
 
 

@@ -159,7 +159,7 @@ def parse(text: str, *, allow_unit: bool = True) -> Node:
     try:
         factor, dim = unit_info(rest)
     except ValueError as exc:
-        raise ExprError(f"unknown unit '{rest}'", text, pos) from exc
+        raise ExprError(str(exc), text, pos) from exc
     return Node("unit", (rest, factor, dim), (node,))
 
 
@@ -199,6 +199,9 @@ def evaluate(node: Node, env: Mapping[str, float]) -> float:
         if b == 0.0:
             raise ZeroDivisionError("division by zero")
         return a / b
+    if a < 0.0 and not float(b).is_integer():
+        # Python would return a complex number, which no parameter can hold.
+        raise ValueError(f"a negative base ({a:g}) has no real power {b:g}")
     return a**b
 
 

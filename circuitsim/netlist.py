@@ -341,7 +341,8 @@ class _Builder:
                 raise NetlistError(f"unknown {what} '{key}'{_near(str(key), decl)}; "
                                    f"known: {', '.join(decl) or 'none'}", loc_of(key), comp)
         local: dict[str, float] = {}
-        for key, p in decl.items():
+        # parameters defaulting to another parameter go last, whatever the declaration order
+        for key, p in sorted(decl.items(), key=lambda kv: isinstance(kv[1].default, str)):
             unit = unit_at if p.unit == "@" else p.unit
             name = f"{prefix}{key}"
             if key in entry:

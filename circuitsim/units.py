@@ -9,6 +9,8 @@ from __future__ import annotations
 
 import contextlib
 import functools
+import math
+import re
 from dataclasses import dataclass
 
 ANGLE_UNITS = frozenset({"radian", "degree", "revolution", "turn", "arcminute", "arcsecond",
@@ -16,6 +18,12 @@ ANGLE_UNITS = frozenset({"radian", "degree", "revolution", "turn", "arcminute", 
                          "rps"})
 # Exponent of angle carried by composite angle units pint keeps as one name.
 _ANGLE_EXP = {"revolutions_per_minute": 1, "revolutions_per_second": 1, "rps": 1}
+_POWER = re.compile(r"\*\*|\^")
+_NUM = r"[-+]?(?:\d{1,3}(?:\.\d{0,6})?|\.\d{1,6})"
+# What may follow a power operator: a short number, or a parenthesised one or fraction; never
+# another power, a longer number or a name glued to it.
+_EXPONENT = re.compile(rf"\s*(?:{_NUM}|\(\s*{_NUM}\s*(?:/\s*{_NUM}\s*)?\))"
+                       rf"(?![\w.(]|\s*(?:\*\*|\^))")
 
 
 @functools.lru_cache(maxsize=1)
@@ -66,11 +74,21 @@ def unit_info(unit: str) -> tuple[float, Dim]:
     ureg = registry()
     if unit.strip() in ("", "1"):
         return 1.0, Dim((), 0.0)
+    # pint evaluates exponents as Python ints: 'm^9^9^9' would compute 9**387420489.
+    if not all(_EXPONENT.match(unit, m.end()) for m in _POWER.finditer(unit)):
+        raise ValueError(f"unknown unit '{unit}': an exponent must be a plain number "
+                         f"such as m^2, s^-1 or m^(1/2)")
     try:
         q = ureg.Quantity(1.0, ureg.parse_units(unit))
+        factor, dim = _si_and_dim(q)
+    except OverflowError as exc:
+        raise ValueError(f"unit '{unit}' is out of range") from exc
     except Exception as exc:  # pint raises several unrelated types
         raise ValueError(f"unknown unit '{unit}'") from exc
-    return _si_and_dim(q)
+    if not (math.isfinite(factor) and factor != 0.0 and math.isfinite(dim.angle)
+            and all(math.isfinite(v) for _, v in dim.dims)):
+        raise ValueError(f"unit '{unit}' is out of range")
+    return factor, dim
 
 
 def _si_and_dim(q) -> tuple[float, Dim]:

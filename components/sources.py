@@ -39,8 +39,9 @@ class CurrentSource(OnePort):
 
 @register("torque")
 class TorqueSource(OneFlange):
-    """Torque T(t) applied to a shaft against the fixed reference (positive T accelerates
-    positive rotation; the flow into the source's flange is -T).
+    """Torque source: the shaft receives T(t) against the fixed reference.
+
+    Positive T accelerates positive rotation; the flow into the source's flange is -T.
 
     Parameters
     ----------
@@ -56,7 +57,7 @@ class TorqueSource(OneFlange):
 
 @register("force")
 class ForceSource(OneTFlange):
-    """Force applied to a translational flange against the fixed reference.
+    """Force source: the flange receives F(t) against the fixed reference.
 
     Parameters
     ----------

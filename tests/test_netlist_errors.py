@@ -13,7 +13,7 @@ import warnings
 from pathlib import Path
 
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, event, given, settings
 from hypothesis import strategies as st
 
 import circuitsim as cs
@@ -601,8 +601,11 @@ def test_mutated_netlists_raise_only_circuitsim_errors(tmp_path, text):
         net = _load(path)
     except cs.CircuitsimError as exc:
         assert "fuzz.yaml" in str(exc)
+        event(f"load: {type(exc).__name__}")
         return
     try:
         _compile(net)
-    except cs.CircuitsimError:
-        pass
+    except cs.CircuitsimError as exc:
+        event(f"compile: {type(exc).__name__}")
+    else:
+        event("compiled")
