@@ -194,6 +194,8 @@ def generate(dae) -> tuple[str, dict[str, Any]]:
         "report": list(dae.report),
         "n_equations": n,
         "jac_nnz": len(jac_entries),
+        "integrals": {s.name: dae.integrals[s.name] for s in dae.states
+                      if s.name in dae.integrals},
     }
     return "\n".join(src), meta
 

@@ -149,7 +149,13 @@ def simulate(model, stop: float | None = None, params: Mapping[str, float] | Non
     if init == "op":
         from .analyses import operating_point
 
-        y0 = operating_point(model, params).y
+        try:
+            y0 = operating_point(model, params).y
+        except SolverError as exc:
+            return SimResult(t_eval[:1], np.zeros((n, 0)), np.zeros((n, 0)),
+                             model.state_names, Status.INIT_FAILED, exc.bare, 0, 0, model, p)
+    elif init != "rest":
+        raise SolverError(f"init must be 'rest' or 'op', not {init!r}")
     try:
         y0, yp0 = consistent_initial(model, 0.0, y0, p)
     except SolverError as exc:

@@ -55,6 +55,7 @@ class Dae:
     tables: tuple[TableData, ...] = ()
     breaks: tuple[BreakSource, ...] = ()
     units: Mapping[str, str] = field(default_factory=dict)
+    integrals: Mapping[str, str] = field(default_factory=dict)  # state name -> domain
 
     def differentiated(self) -> set[sp.Symbol]:
         """Unknowns whose derivative appears in some equation."""
@@ -116,6 +117,7 @@ def assemble(net: Netlist) -> Dae:
 
     potentials: dict[str, sp.Expr] = {}
     integrals: dict[str, sp.Expr] = {}
+    integral_domains: dict[str, str] = {}
     flows: dict[str, list[sp.Symbol]] = {}
     for node, (dom_name, _) in net.nodes.items():
         dom = DOMAINS[dom_name]
@@ -138,6 +140,7 @@ def assemble(net: Netlist) -> Dae:
             origins.append(f"{dom.integral} of node {node}")
             exports[f"{node}.{dom.integral}"] = sym
             units[f"{node}.{dom.integral}"] = dom.integral_unit or ""
+            integral_domains[sym.name] = dom.name
         return integrals[node]
 
     for spec in net.components:
@@ -183,7 +186,7 @@ def assemble(net: Netlist) -> Dae:
             units[name] = units.get(str(probe.node.args[0].value), "")
     return Dae(t, tuple(unknowns), dict(der.table), tuple(equations), tuple(origins),
                tuple(params.values()), exports, initial, probes, tuple(tables), tuple(breaks),
-               units)
+               units, integral_domains)
 
 
 def _instantiate(spec: ComponentSpec, t, der, new, potentials, flows, integral, params,

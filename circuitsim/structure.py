@@ -53,6 +53,7 @@ class IndexOneDae:
     breaks: tuple[BreakSource, ...]
     units: Mapping[str, str]
     report: tuple[str, ...]
+    integrals: Mapping[str, str]
 
     def pretty(self, latex: bool = False) -> str:
         subs = {d: sp.Symbol(f"{s.name}'") for s, d in zip(self.states, self.yp, strict=True)}
@@ -303,7 +304,7 @@ def reduce_index(dae: Dae, nominal: Mapping[sp.Symbol, float]) -> IndexOneDae:
     probes = {k: sp.sympify(v).xreplace(resolve) for k, v in dae.probes.items()}
     return IndexOneDae(dae.t, states, yp, len(diff), tuple(sys.eqs), tuple(sys.origins),
                        dae.params, resolve, exports, probes, dict(dae.initial), dae.tables,
-                       dae.breaks, dae.units, tuple(sys.report))
+                       dae.breaks, dae.units, tuple(sys.report), dae.integrals)
 
 
 def _check_square(sys: _System) -> None:

@@ -1,0 +1,93 @@
+"""The command line: run/check/equations/components, exit codes, --set with units."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from circuitsim.cli import component_table, main
+from conftest import NETLISTS, ROOT
+
+RLC = NETLISTS / "examples" / "rlc.yaml"
+BASE = NETLISTS / "kim2024" / "base.yaml"
+
+
+def test_run_writes_csv_and_png(tmp_path, capsys):
+    out, png = tmp_path / "w.csv", tmp_path / "w.png"
+    assert main(["run", str(RLC), "--out", str(out), "--plot", str(png)]) == 0
+    text = capsys.readouterr().out
+    assert "v_c" in text and "csv:" in text
+    data = np.loadtxt(out, delimiter=",", skiprows=1)
+    assert data[-1, 0] == pytest.approx(0.02)
+    assert data[:, 1].max() == pytest.approx(1.8545, abs=1e-3)  # overshoot in the header
+    assert png.read_bytes()[:4] == b"\x89PNG"
+    assert not list(tmp_path.glob(".circuitsim-*"))  # no temporary left behind
+
+
+def test_set_overrides_with_units(capsys):
+    assert main(["run", str(RLC), "--no-files", "--json", "--set", "C=4uF"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    # RLC ringing frequency 1/(2 pi sqrt(L C)) * sqrt(1 - zeta^2), zeta = 0.1 with C = 4 uF
+    f = 1 / (2 * np.pi * np.sqrt(10e-3 * 4e-6)) * np.sqrt(1 - 0.1**2)
+    assert out["probes"]["i"]["ripple"]["frequency"] == pytest.approx(f, rel=2e-2)
+
+
+@pytest.mark.parametrize("setting, words", [
+    ("C=5ohm", "dimension"),
+    ("Nope=1", "unknown parameter 'Nope'"),
+    ("C=-1uF", "must be positive"),
+    ("C=__import__('os')", "unknown function"),
+])
+def test_bad_set_exits_2(capsys, setting, words):
+    assert main(["run", str(RLC), "--no-files", "--set", setting]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("error: ") and words in err and "Traceback" not in err
+
+
+def test_solver_failure_exits_1(write_netlist, capsys):
+    """A Coulomb friction sharpened to 1e-14 rad/s is effectively discontinuous: IDA gives up,
+    and the message names the time and the variable."""
+    path = write_netlist("""
+        components:
+          - {name: T1, type: torque, shaft: s, T: {sine: {amplitude: 1, freq: 50 Hz}}}
+          - {name: Jr, type: inertia, shaft: s, J: 1e-6}
+          - {name: F1, type: friction, shaft: s, tau_c: 0.5, w_brk: 1e-14}
+        probes: {w: s.w}
+        analysis: {stop: 0.1, rtol: 1e-10, atol: 1e-14}
+    """)
+    assert main(["run", str(path), "--no-files"]) == 1
+    err = capsys.readouterr().err
+    assert "at t = " in err and "s.w" in err
+
+
+def test_check_and_equations(capsys):
+    assert main(["check", str(BASE)]) == 0
+    out = capsys.readouterr().out
+    assert "25 equations, 25 unknowns" in out and "4 unknowns (4 differential" in out
+    assert "does not conserve energy" in out and out.rstrip().endswith("ok")
+    assert main(["equations", str(BASE)]) == 0
+    eqs = capsys.readouterr().out
+    assert "der(" not in eqs and "rotor.w'" in eqs and "[KCL at node a]" in eqs
+    assert main(["equations", str(BASE), "--reduced", "--latex"]) == 0
+    assert "\\quad" in capsys.readouterr().out
+
+
+def test_components_table_is_in_readme(capsys):
+    assert main(["components"]) == 0
+    listing = capsys.readouterr().out
+    for name in ("emf", "varistor", "inertia", "friction", "cogging", "torque", "mass"):
+        assert name in listing
+    assert component_table(markdown=True) in (ROOT / "README.md").read_text()
+
+
+def test_console_script_entry_point(tmp_path):
+    """The installed `circuitsim` command, as a user runs it."""
+    proc = subprocess.run([sys.executable, "-m", "circuitsim.cli", "run", str(RLC), "--json",
+                           "--no-files"], capture_output=True, text=True, cwd=tmp_path,
+                          timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    assert json.loads(proc.stdout)["probes"]["v_c"]["mean"] == pytest.approx(1.0, abs=1e-3)
