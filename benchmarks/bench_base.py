@@ -91,7 +91,8 @@ def ripple(x_on_grid: np.ndarray) -> tuple[float, float]:
 
 
 def on_grid(res, name: str) -> np.ndarray:
-    """A circuitsim series at exactly the ``GRID`` times (duplicate output times dropped)."""
+    """A circuitsim series at exactly the ``GRID`` times (looked up by time; a repeated time,
+    as older versions produced at chunk edges, is harmless)."""
     t = res.t[::-1]
     u, first = np.unique(t, return_index=True)
     idx = np.searchsorted(u, GRID)
@@ -320,6 +321,25 @@ def main(argv: list[str] | None = None) -> int:
         cands.append({"tool": "circuitsim", "settings": f"IDA rtol {rtol:g}, atol {atol:g}",
                       "time": t_best, "i8": i8, "err": err(i8), "rtol": rtol, "atol": atol,
                       "note": f"{r.nfev} res, {r.njev} jac"})
+    # The netlist's own output grid (50 us: 24 samples per ripple period) is what a user gets
+    # from `circuitsim run`; the sine fit is exact on samples, so no denser grid is needed.
+    # The reference is LSODA (rtol 1e-11) sampled at the same times, through the same fit.
+    own_t = np.linspace(0.0, T_STOP, int(round(T_STOP / model.netlist.analysis.step)) + 1)
+    win = own_t >= T_WIN
+    _, i_ref_own, *_ = simulate_kim_lsoda(T_STOP, t_eval=own_t, rtol=1e-11, atol=1e-13)
+    from circuitsim.signal import harmonic
+
+    i8_ref_own = harmonic(own_t[win], i_ref_own[win], near=NEAR).amplitude
+    for rtol, atol in [(1e-6, 1e-8), (1e-6, 1e-9), (2e-6, 1e-8)]:
+        def solve_own(rtol=rtol, atol=atol):
+            return model.simulate(stop=T_STOP, rtol=rtol, atol=atol)
+
+        t_best, r = best_of(5, solve_own)
+        i8 = harmonic(r.t[r.t >= T_WIN], r["i_total"][r.t >= T_WIN], near=NEAR).amplitude
+        cands.append({"tool": "circuitsim", "settings": f"IDA rtol {rtol:g}, atol {atol:g}, "
+                      f"netlist output step {model.netlist.analysis.step * 1e6:g} us",
+                      "time": t_best, "i8": i8, "err": abs(i8 - i8_ref_own) / i8_ref_own,
+                      "rtol": rtol, "atol": atol, "note": f"{r.nfev} res, {r.njev} jac"})
     ok = [c for c in cands if c["err"] <= TARGET_ERR]
     chosen = min(ok, key=lambda c: c["time"]) if ok else None
     for c in cands:

@@ -53,6 +53,18 @@ def build(net: Netlist) -> CircuitGraph:
             dom = next(p.domain.name for p in c.cls.ports if p.name == br.a)
             a = _n(ports[br.a], dom)
             b = _n(ports[br.b], dom) if br.b is not None else REF
+            if a == b and br.kind == "C":
+                # Its across variable is identically zero: no state, a singular system.
+                across = DOMAINS[dom].across
+                if br.b is None:
+                    raise NetlistError(f"port '{br.a}' is on the reference '{ports[br.a]}', "
+                                       f"where {across} is always zero, so the element does "
+                                       f"nothing. Connect '{br.a}' to a moving node or remove "
+                                       f"the element", c.loc, c.name)
+                raise NetlistError(f"both ports '{br.a}' and '{br.b}' connect to node "
+                                   f"'{ports[br.a]}': the element is short-circuited, so its "
+                                   f"{across} is always zero. Connect '{br.b}' to another node "
+                                   f"or remove the element", c.loc, c.name)
             graphs[dom].add_edge(a, b, comp=c.name, kind=br.kind)
         for _, node in c.ports:
             usage.setdefault(node, []).append(c.name)

@@ -159,6 +159,26 @@ def _plain(obj: Any) -> Any:
     return obj
 
 
+_MAX_VALUES = 1_000_000
+
+
+def _expanded_size(obj: Any, memo: dict[int, int]) -> int:
+    """Number of values ``obj`` holds once aliases are expanded (linear time, shared memo)."""
+    if not isinstance(obj, (Mapping, list)):
+        return 1
+    key = id(obj)
+    if key not in memo:
+        memo[key] = 0  # a recursive alias (ruamel makes it None anyway) counts once
+        items = [*obj.keys(), *obj.values()] if isinstance(obj, Mapping) else obj
+        total = 1
+        for v in items:
+            total += _expanded_size(v, memo)
+            if total > _MAX_VALUES:
+                break
+        memo[key] = total
+    return memo[key]
+
+
 def _read_yaml(path: Path) -> Any:
     from ruamel.yaml import YAML
     from ruamel.yaml.error import MarkedYAMLError, YAMLError
@@ -175,12 +195,24 @@ def _read_yaml(path: Path) -> Any:
         doc = yaml.load(text)
     except MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
-        line = mark.line + 1 if mark is not None else 0
         what = (exc.problem or exc.context or "syntax error").strip()
+        ctx = exc.context_mark
+        if exc.problem and exc.context and ctx is not None and ctx is not mark:
+            if "end of stream" in exc.problem:  # e.g. an unclosed quote: where it started
+                mark = ctx
+            what = f"{what} ({exc.context.strip()} from line {ctx.line + 1})"
+        line = mark.line + 1 if mark is not None else 0
         raise NetlistError(f"YAML syntax error: {what}. Check indentation, colons and quotes.",
                            SourceLoc(str(path), line)) from None
     except (YAMLError, ValueError, TypeError) as exc:
         raise NetlistError(f"YAML error: {exc}", SourceLoc(str(path))) from None
+    except RecursionError:
+        raise NetlistError("YAML error: lists or mappings are nested too deeply",
+                           SourceLoc(str(path))) from None
+    if _expanded_size(doc, {}) > _MAX_VALUES:
+        raise NetlistError(f"the YAML expands to more than {_MAX_VALUES} values (anchors and "
+                           f"aliases repeat their content); write the netlist out plainly",
+                           SourceLoc(str(path)))
     if not isinstance(doc, Mapping):
         raise NetlistError("a netlist is a YAML mapping with 'components:' (and optionally "
                            "'parameters:', 'probes:', 'analysis:', 'include:')",
@@ -481,7 +513,7 @@ class _Builder:
 
     def bind_node(self, node: str, domain: str, loc: SourceLoc, comp: str, port: str) -> None:
         for d in DOMAINS.values():
-            if node in d.references and d.name != domain:
+            if node in d.references and node not in DOMAINS[domain].references:
                 raise NetlistError(f"port '{port}' is {domain} but '{node}' is the {d.name} "
                                    f"reference; use "
                                    f"{' or '.join(DOMAINS[domain].references)}", loc, comp)

@@ -6,10 +6,10 @@ import pickle
 import warnings
 
 import pytest
+from conftest import NETLISTS
 
 import circuitsim as cs
 from circuitsim import mna
-from conftest import NETLISTS
 
 
 def test_second_compile_uses_the_cache(monkeypatch):
@@ -64,7 +64,7 @@ def test_init_op_starts_at_the_averaged_steady_state():
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         model = cs.compile(cs.load(NETLISTS / "kim2024" / "base.yaml"))
-    w, i_dc, _ = kim_dc_steady_state()
+    w, _, _ = kim_dc_steady_state()
     op = operating_point(model)
     assert op["rotor.w"] == pytest.approx(w, rel=1e-9)
     res = model.simulate(stop=0.02, init="op")

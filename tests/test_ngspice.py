@@ -58,8 +58,9 @@ def _compile(name: str):
 def _at(res, name: str, t: np.ndarray) -> np.ndarray:
     """``res[name]`` at exactly the times ``t`` (which were in ``t_eval``).
 
-    circuitsim may repeat a time point (a breakpoint or a chunk edge that is also an output
-    time); duplicates carry the same state, so the last of each is kept.
+    Looks the values up by time, and asserts that every requested time is there. Before
+    35c6ae7, circuitsim repeated a breakpoint or chunk-edge time. A repeated time would carry
+    the same state, so the last copy of each is kept.
     """
     tt = res.t[::-1]
     u, first = np.unique(tt, return_index=True)
