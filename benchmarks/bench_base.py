@@ -324,7 +324,7 @@ def main(argv: list[str] | None = None) -> int:
     # The netlist's own output grid (50 us: 24 samples per ripple period) is what a user gets
     # from `circuitsim run`; the sine fit is exact on samples, so no denser grid is needed.
     # The reference is LSODA (rtol 1e-11) sampled at the same times, through the same fit.
-    own_t = np.linspace(0.0, T_STOP, int(round(T_STOP / model.netlist.analysis.step)) + 1)
+    own_t = np.linspace(0.0, T_STOP, round(T_STOP / model.netlist.analysis.step) + 1)
     win = own_t >= T_WIN
     _, i_ref_own, *_ = simulate_kim_lsoda(T_STOP, t_eval=own_t, rtol=1e-11, atol=1e-13)
     from circuitsim.signal import harmonic
