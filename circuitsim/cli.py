@@ -238,6 +238,39 @@ def cmd_components(args) -> int:
     return 0
 
 
+def cmd_sweep(args) -> int:
+    from .sweep import Metrics, parse_range, plot_sweep, progress_bar, sweep
+
+    grid: dict[str, list[float]] = {}
+    for item in args.set or []:
+        if "=" not in item:
+            raise ParameterError(f"--set takes NAME=RANGE (e.g. Lf=1e-9..1e-1:log:9), "
+                                 f"got '{item}'")
+        name, text = (x.strip() for x in item.split("=", 1))
+        grid[name] = parse_range(text)
+    metrics = Metrics(probes=tuple(args.probe) if args.probe else None, order=args.order,
+                      window=args.window, energy=not args.no_energy)
+    rows = sweep(args.netlists, grid, mode="zip" if args.zip else "product", metrics=metrics,
+                 stop=args.stop, jobs=args.jobs, out=args.out, resume=args.resume,
+                 progress=None if args.quiet else progress_bar())
+    failed = [r for r in rows if r.get("status") != "ok"]
+    print(f"{len(rows)} runs, {len(failed)} failed" + (f"; table: {args.out}" if args.out
+                                                          else ""))
+    if args.plot:
+        swept = [k for k, v in grid.items() if len(v) > 1]
+        probe = (args.probe or [None])[0] or next(
+            (k[:-len(".ripple_amp")] for k in rows[0] if k.endswith(".ripple_amp")), None)
+        if swept and probe:
+            plot_sweep(rows, swept[0], f"{probe}.ripple_amp", args.plot)
+            print(f"plot: {args.plot}")
+    if not args.out:
+        keys = list(dict.fromkeys(k for r in rows for k in r))
+        print(",".join(keys))
+        for r in rows:
+            print(",".join(str(r.get(k, "")) for k in keys))
+    return 1 if failed and len(failed) == len(rows) else 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(prog="circuitsim", description=__doc__.splitlines()[0])
     sub = ap.add_subparsers(dest="command", required=True)
@@ -253,6 +286,25 @@ def build_parser() -> argparse.ArgumentParser:
     r.add_argument("--window", type=float, default=0.2,
                    help="steady window as a fraction of the run (default 0.2)")
     r.set_defaults(func=cmd_run)
+    w = sub.add_parser("sweep", help="parameter/topology sweep into a table")
+    w.add_argument("netlists", nargs="+")
+    w.add_argument("--set", action="append", metavar="NAME=RANGE",
+                   help="sweep axis: 1e-9..1e-1:log:9, 0..1:lin:5, or 1,2,5 (units allowed)")
+    w.add_argument("--zip", action="store_true", help="combine axes element-wise, not as a "
+                   "Cartesian product")
+    w.add_argument("--jobs", type=int, default=os.cpu_count() or 1,
+                   help="local worker processes (default: all cores)")
+    w.add_argument("--out", help="CSV table; rows are appended as runs finish")
+    w.add_argument("--resume", action="store_true", help="skip runs already in --out")
+    w.add_argument("--plot", help="PNG of ripple amplitude against the first swept parameter")
+    w.add_argument("--probe", action="append", help="probe(s) to report (default: all)")
+    w.add_argument("--order", type=float, help="ripple order per shaft revolution "
+                   "(default: the dominant ripple)")
+    w.add_argument("--stop", type=float, help="stop time [s]")
+    w.add_argument("--window", type=float, default=0.2)
+    w.add_argument("--no-energy", action="store_true", help="skip the energy audit columns")
+    w.add_argument("--quiet", action="store_true", help="no progress bar")
+    w.set_defaults(func=cmd_sweep)
     c = sub.add_parser("check", help="validate; show the graph and equation counts")
     c.add_argument("netlist")
     c.set_defaults(func=cmd_check)

@@ -170,6 +170,10 @@ class Component:
         """Initial values of variables (default: start from rest)."""
         return {}
 
+    def energy(self, x: Scope) -> sp.Expr | None:
+        """Energy stored in the component [J] (None if it stores none)."""
+        return None
+
     def warnings(self, values: Mapping[str, float]) -> list[str]:
         """Physics warnings for these numeric parameter values [SI]."""
         return []

@@ -254,7 +254,23 @@ def dimension(node: Node, env: Mapping[str, Dim | None]) -> Dim | None:
 
 
 def to_sympy(node: Node, symbols: Mapping[str, object]):
-    """Build a sympy expression from the tree (names mapped through ``symbols``)."""
+    """Build a sympy expression from the tree (names mapped through ``symbols``).
+
+    Raises NetlistError when the result is infinite, undefined or complex (``x/0``,
+    ``sqrt(-1)``): generated code could not evaluate it.
+    """
+    import sympy as sp
+
+    from .errors import NetlistError
+
+    out = _to_sympy(node, symbols)
+    if isinstance(out, sp.Basic) and out.has(sp.zoo, sp.nan, sp.oo, -sp.oo, sp.I):
+        raise NetlistError(f"the expression evaluates to {out}: infinite, undefined or "
+                           f"complex (a division by zero?); rewrite it so it stays finite")
+    return out
+
+
+def _to_sympy(node: Node, symbols: Mapping[str, object]):
     import sympy as sp
 
     k = node.kind
@@ -264,13 +280,13 @@ def to_sympy(node: Node, symbols: Mapping[str, object]):
     if k == "name":
         return symbols[str(node.value)]
     if k == "neg":
-        return -to_sympy(node.args[0], symbols)
+        return -_to_sympy(node.args[0], symbols)
     if k == "unit":
-        return to_sympy(node.args[0], symbols) * sp.Float(node.value[1])  # type: ignore[index]
+        return _to_sympy(node.args[0], symbols) * sp.Float(node.value[1])  # type: ignore[index]
     if k == "call":
         fn = {"abs": sp.Abs, "min": sp.Min, "max": sp.Max, "log": sp.log}.get(
             str(node.value)) or getattr(sp, str(node.value))
-        return fn(*(to_sympy(a, symbols) for a in node.args))
-    a, b = (to_sympy(x, symbols) for x in node.args)
+        return fn(*(_to_sympy(a, symbols) for a in node.args))
+    a, b = (_to_sympy(x, symbols) for x in node.args)
     return {"+": lambda: a + b, "-": lambda: a - b, "*": lambda: a * b,
             "/": lambda: a / b, "**": lambda: a**b}[str(node.value)]()

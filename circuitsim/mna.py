@@ -149,6 +149,10 @@ def assemble(net: Netlist) -> Dae:
         for eq in [*comp.bind(scope), *comp.equations(scope)]:
             equations.append(sp.sympify(eq))
             origins.append(f"{spec.name} ({spec.type})")
+        stored = comp.energy(scope)
+        if stored is not None:
+            exports[f"{spec.name}.energy"] = sp.sympify(stored)
+            units[f"{spec.name}.energy"] = "J"
         for var, val in comp.initial(scope).items():
             initial[var] = sp.sympify(val)
         for k, v in scope._exports.items():
@@ -158,11 +162,20 @@ def assemble(net: Netlist) -> Dae:
                 if k in (dom.across, dom.through):
                     units.setdefault(f"{spec.name}.{k}", dom.across_unit if k == dom.across
                                      else dom.through_unit)
-        exports[f"{spec.name}.power"] = sum(
-            (exports[f"{spec.name}.{p}.{DOMAINS[net.nodes[n][0]].across}"] *
-             exports[f"{spec.name}.{p}.{DOMAINS[net.nodes[n][0]].through}"]
-             for p, n in spec.ports), sp.Integer(0))
+        # power absorbed by the component, in total and per domain (an EMF converts between
+        # its electrical and rotational sides; the two parts are what an energy audit needs)
+        by_domain: dict[str, sp.Expr] = {}
+        for p, n in spec.ports:
+            dom = DOMAINS[net.nodes[n][0]]
+            by_domain[dom.name] = by_domain.get(dom.name, sp.Integer(0)) + \
+                exports[f"{spec.name}.{p}.{dom.across}"] * \
+                exports[f"{spec.name}.{p}.{dom.through}"]
+        exports[f"{spec.name}.power"] = sum(by_domain.values(), sp.Integer(0))
         units[f"{spec.name}.power"] = "W"
+        if len(by_domain) > 1:
+            for dname, pw in by_domain.items():
+                exports[f"{spec.name}.power_{dname}"] = pw
+                units[f"{spec.name}.power_{dname}"] = "W"
     for node, fl in flows.items():
         dom = DOMAINS[net.nodes[node][0]]
         equations.append(sp.Add(*fl))

@@ -204,11 +204,14 @@ def _read_yaml(path: Path) -> Any:
         line = mark.line + 1 if mark is not None else 0
         raise NetlistError(f"YAML syntax error: {what}. Check indentation, colons and quotes.",
                            SourceLoc(str(path), line)) from None
-    except (YAMLError, ValueError, TypeError) as exc:
-        raise NetlistError(f"YAML error: {exc}", SourceLoc(str(path))) from None
     except RecursionError:
         raise NetlistError("YAML error: lists or mappings are nested too deeply",
                            SourceLoc(str(path))) from None
+    except (YAMLError, LookupError, ValueError, TypeError) as exc:
+        # ruamel's scalar constructors fail with bare IndexError/KeyError on e.g. '!!float'
+        # with no value or '!!bool x'
+        raise NetlistError(f"YAML error: {type(exc).__name__}: {exc}. Check the values and "
+                           f"'!!' tags", SourceLoc(str(path))) from None
     if _expanded_size(doc, {}) > _MAX_VALUES:
         raise NetlistError(f"the YAML expands to more than {_MAX_VALUES} values (anchors and "
                            f"aliases repeat their content); write the netlist out plainly",
@@ -277,7 +280,10 @@ def _parse_value(text: Any, loc: SourceLoc, what: str, comp: str | None = None) 
     if isinstance(text, bool):
         raise ParameterError(f"{what} must be a number or expression, not {text}", loc, comp)
     if isinstance(text, (int, float)):
-        return ex.Node("num", float(text))
+        try:
+            return ex.Node("num", float(text))
+        except OverflowError:  # an int beyond float range: infinite, refused as such later
+            return ex.Node("num", math.inf if text > 0 else -math.inf)
     try:
         return ex.parse(str(text))
     except ex.ExprError as exc:
@@ -559,12 +565,22 @@ def load(path: str | Path) -> Netlist:
             node = ex.parse(str(text), allow_unit=False)
         except ex.ExprError as exc:
             raise NetlistError(f"probe '{name}': {exc}", loc) from None
+        try:  # with every name a free symbol: catches 'x/0', 'sqrt(-1)' before codegen
+            ex.to_sympy(node, {n: _free_symbol(n) for n in ex.names(node)})
+        except NetlistError as exc:
+            raise NetlistError(f"probe '{name}': {exc.bare}", loc) from None
         probes[name] = Probe(name, node, str(text), loc)
     analysis = _analysis(raw, b)
     tables = [t for c in comps for t in c.tables]
     if tables:
         comps = _index_tables(comps)
     return Netlist(str(path), raw.title, params, tuple(comps), probes, analysis, nodes)
+
+
+def _free_symbol(name: str):
+    import sympy as sp
+
+    return sp.Symbol(name, real=True)
 
 
 def _index_tables(comps: list[ComponentSpec]) -> list[ComponentSpec]:

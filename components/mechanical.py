@@ -45,6 +45,9 @@ class Inertia(OneFlange):
     def initial(self, x):
         return {x.w: self.w0, x.shaft.phi: self.phi0}
 
+    def energy(self, x):
+        return self.J * x.w**2 / 2
+
 
 @register("damper")
 class Damper(OneFlange):
@@ -140,6 +143,9 @@ class Mass(OneTFlange):
 
     def initial(self, x):
         return {x.v: self.v0, x.flange.x: self.x0}
+
+    def energy(self, x):
+        return self.m * x.v**2 / 2
 
 
 @register("tdamper")

@@ -43,6 +43,9 @@ class Inductor(OnePort):
     def initial(self, x):
         return {x.i: self.i0}
 
+    def energy(self, x):
+        return self.L * x.i**2 / 2
+
 
 @register("C", "capacitor")
 class Capacitor(OnePort):
@@ -63,6 +66,9 @@ class Capacitor(OnePort):
 
     def initial(self, x):
         return {x.v: self.v0}
+
+    def energy(self, x):
+        return self.C * x.v**2 / 2
 
 
 @register("ground")

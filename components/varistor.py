@@ -27,6 +27,9 @@ class VaristorRC(OnePort):
         vc = x.var("vc")
         return [x.v - self.R * x.i - vc, x.i - self.C * x.der(vc)]
 
+    def energy(self, x):
+        return self.C * x.vc**2 / 2
+
 
 @register("varistor")
 class Varistor(OnePort):
@@ -53,3 +56,6 @@ class Varistor(OnePort):
         u = x.v / self.V_ref
         clamp = self.I_ref * u * (u**2 + sp.Float(1e-12)) ** ((self.alpha - 1) / 2)
         return [x.i - self.C * x.der(x.v) - clamp]
+
+    def energy(self, x):
+        return self.C * x.v**2 / 2

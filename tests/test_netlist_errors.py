@@ -460,6 +460,45 @@ def test_yaml_nested_too_deeply(write_netlist):
     assert f"{path.name}" in str(ei.value) and "nested too deeply" in str(ei.value)
 
 
+@pytest.mark.parametrize(("value", "shown"), [
+    ("!!bool x", "KeyError"),  # ruamel's constructors raised these bare
+    ("!!int 0x", "IndexError"),
+    ("-_", "IndexError"),
+])
+def test_yaml_scalar_the_parser_cannot_construct(write_netlist, value, shown):
+    path = write_netlist(f"""
+        components:
+          - {{name: V1, type: V, p: a, n: gnd, V: 1 V}}
+          - name: R1
+            type: R
+            p: a
+            n: gnd
+            R: {value}
+        """)
+    with pytest.raises(cs.NetlistError) as ei:
+        cs.load(path)
+    msg = str(ei.value)
+    assert msg.startswith(f"{ei.value.loc}: YAML error: {shown}") and path.name in msg, msg
+    assert "'!!' tags" in msg
+
+
+@pytest.mark.parametrize("sign", ["", "-"])
+def test_integer_beyond_float_range(write_netlist, sign):
+    # float(10**400) raised OverflowError out of the loader.
+    path = write_netlist(f"""
+        components:
+          - {{name: V1, type: V, p: a, n: gnd, V: 1 V}}
+          - name: R1
+            type: R
+            p: a
+            n: gnd
+            R: {sign}1{"0" * 400}
+        """)
+    with pytest.raises(cs.ParameterError) as ei:
+        cs.load(path)
+    _check(ei.value, path, 7, "R1", f"R = {sign}inf", "must be a finite number")
+
+
 @pytest.mark.parametrize(("ports", "words"), [
     ("p: a, n: a", ("both ports 'p' and 'n'", "node 'a'", "short-circuited")),
     ("p: gnd, n: '0'", ("both ports 'p' and 'n'", "short-circuited")),
@@ -489,6 +528,27 @@ def test_inertia_on_the_fixed_reference(write_netlist):
     with pytest.raises(cs.NetlistError) as ei:
         _compile(net)
     _check(ei.value, path, 4, "Jr", "port 'shaft'", "reference 'fixed'", "moving node")
+
+
+@pytest.mark.parametrize(("probe", "shown"), [
+    ("R1.i / 0", "zoo"),  # used to escape from codegen as KeyError: 'ComplexInfinity'
+    ("a.v / (a.v - a.v)", "zoo"),
+    ("sqrt(-1)", "I"),  # used to escape from compile() as TypeError (complex)
+    ("1e999", "oo"),
+])
+def test_probe_that_cannot_be_evaluated(write_netlist, probe, shown):
+    path = write_netlist(f"""
+        components:
+          - {{name: V1, type: V, p: a, n: gnd, V: 1 V}}
+          - {{name: R1, type: R, p: a, n: gnd, R: 1 ohm}}
+        probes:
+          v: a.v
+          bad: '{probe}'
+        """)
+    with pytest.raises(cs.NetlistError) as ei:
+        cs.load(path)
+    _check(ei.value, path, 6, None, "probe 'bad'", f"evaluates to {shown}",
+           "infinite, undefined or complex", "rewrite it")
 
 
 def test_shaft_element_on_the_fixed_reference_is_allowed(write_netlist):
@@ -709,7 +769,8 @@ def test_cli_reports_yaml_syntax_error(write_netlist, capsys):
 LINES = RLC.splitlines(keepends=True)
 ALPHABET = ["'", '"', "[", "]", "{", "}", ":", ",", "-", " ", "mH", "Hz", "rpm", "rad/s", "1e999",
             "nan", "inf", "0", "-1", "1", "2.5", "x", "R", "L1", "gnd", "(", ")", "*", "/", "^",
-            "**", "#", "&a", "*a", "!!python/object:os.system", "\t", "%", "|", "__", "."]
+            "**", "#", "&a", "*a", "!!python/object:os.system", "\t", "%", "|", "__", ".",
+            "!!float", "!!bool", "!!int", "_", "~", "1" + "0" * 400]
 VALUE = re.compile(r"(?<=: )[^,{}\[\]\n]+")
 
 
