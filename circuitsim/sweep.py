@@ -232,7 +232,7 @@ def sweep(netlists: str | Path | Sequence[str | Path],
             models[str(p)] = compile_model(load(p))
     points = grid_points(grid or {}, mode)
     for name in (grid or {}):
-        for path, model in models.items():
+        for model in models.values():
             model.param_values({name: points[0][name]})  # unknown names fail before any run
     runs = [Run(str(p), pt, stop, dict(sim_options)) for p in paths for pt in points]
     out_path = Path(out) if out else None

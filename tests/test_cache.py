@@ -6,10 +6,11 @@ import pickle
 import warnings
 
 import pytest
-from conftest import NETLISTS
 
 import circuitsim as cs
 from circuitsim import mna
+
+from conftest import NETLISTS
 
 
 def test_second_compile_uses_the_cache(monkeypatch):
@@ -57,9 +58,9 @@ def test_compiled_model_pickles_for_worker_processes():
 def test_init_op_starts_at_the_averaged_steady_state():
     """Kim base: the operating point (ripple averaged over a turn) is the closed-form DC
     state, and a run from it is already steady."""
-    from reference import kim_dc_steady_state
-
     from circuitsim.analyses import operating_point
+
+    from reference import kim_dc_steady_state
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")

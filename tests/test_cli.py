@@ -8,9 +8,10 @@ import sys
 
 import numpy as np
 import pytest
-from conftest import NETLISTS, ROOT
 
 from circuitsim.cli import component_table, main
+
+from conftest import NETLISTS, ROOT
 
 RLC = NETLISTS / "examples" / "rlc.yaml"
 BASE = NETLISTS / "kim2024" / "base.yaml"

@@ -7,11 +7,12 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from conftest import NETLISTS
-from reference import dc_motor_steady_speed, dc_motor_step, rc_step, rl_step, rlc_series_step
 from scipy.integrate import cumulative_simpson
 
 import circuitsim as cs
+
+from conftest import NETLISTS
+from reference import dc_motor_steady_speed, dc_motor_step, rc_step, rl_step, rlc_series_step
 
 
 def rel_err(sim: np.ndarray, exact: np.ndarray) -> float:

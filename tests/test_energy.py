@@ -8,6 +8,7 @@ import pytest
 
 import circuitsim as cs
 from circuitsim.analyses import energy_audit
+
 from conftest import NETLISTS
 
 

@@ -7,9 +7,10 @@ from __future__ import annotations
 import warnings
 
 import pytest
-from conftest import NETLISTS
 
 import circuitsim as cs
+
+from conftest import NETLISTS
 
 ALL = sorted(NETLISTS.rglob("*.yaml"))
 

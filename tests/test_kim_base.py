@@ -12,12 +12,13 @@ import json
 
 import numpy as np
 import pytest
-from conftest import NETLISTS
-from reference import simulate_kim_lsoda, small_signal_i8
 
 import circuitsim as cs
 from circuitsim import signal
 from circuitsim.cli import main
+
+from conftest import NETLISTS
+from reference import simulate_kim_lsoda, small_signal_i8
 
 BASE = NETLISTS / "kim2024" / "base.yaml"
 

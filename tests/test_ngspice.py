@@ -19,11 +19,12 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from ngspice import KIM_VECTORS, RLC_VECTORS, have_ngspice, kim_base_deck, rlc_deck, run_ngspice
-from reference import resample, rlc_series_step
 
 import circuitsim as cs
 from circuitsim.signal import harmonic
+
+from ngspice import KIM_VECTORS, RLC_VECTORS, have_ngspice, kim_base_deck, rlc_deck, run_ngspice
+from reference import resample, rlc_series_step
 
 pytestmark = pytest.mark.ngspice
 

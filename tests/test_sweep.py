@@ -7,6 +7,7 @@ import csv
 import pytest
 
 from circuitsim.sweep import Metrics, grid_points, parse_range, sweep
+
 from conftest import NETLISTS
 
 CASE1 = NETLISTS / "kim2024" / "case1.yaml"
