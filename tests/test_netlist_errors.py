@@ -454,7 +454,7 @@ def test_yaml_alias_bomb_is_refused_quickly(write_netlist):
 
 
 def test_yaml_nested_too_deeply(write_netlist):
-    path = write_netlist("components: " + "[" * 3000 + "]" * 3000 + "\n")
+    path = write_netlist("components: " + "[" * 1500 + "]" * 1500 + "\n")
     with pytest.raises(cs.NetlistError) as ei:
         cs.load(path)
     assert f"{path.name}" in str(ei.value) and "nested too deeply" in str(ei.value)
