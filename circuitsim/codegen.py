@@ -144,7 +144,8 @@ def generate(dae) -> tuple[str, dict[str, Any]]:
            for k in names_out]
     init_syms = [s for s in dae.initial]
     init_vals = [sp.sympify(dae.initial[s]).xreplace(ren) for s in init_syms]
-    init_exprs = [sp.sympify(dae.solved.get(s, s)).xreplace(ren) for s in init_syms]
+    # a key may be an expression (a capacitor's v = p.v - n.v): resolve eliminated symbols
+    init_exprs = [sp.sympify(s).xreplace(dict(dae.solved)).xreplace(ren) for s in init_syms]
 
     def body(name: str, args: str, exprs: list, targets: list[str], pre: list[str] = (),
              post: list[str] = (), vec: bool = False) -> list[str]:
@@ -187,7 +188,9 @@ def generate(dae) -> tuple[str, dict[str, Any]]:
         "params": [p.name for p in dae.params],
         "observed": names_out,
         "n_probes": len(dae.probes),
-        "initial": [[s.name, state_index.get(s, -1)] for s in init_syms],
+        "initial": [[str(s), state_index.get(s, -1),
+                     sorted(q.name for q in sp.sympify(dae.initial[s]).free_symbols)]
+                    for s in init_syms],
         "units": dict(dae.units),
         "breaks": [[b.kind, [[f, p.name] for f, p in b.fields]] for b in dae.breaks],
         "n_tables": len(dae.tables),

@@ -90,17 +90,71 @@ def consistent_initial(model, t0: float, y: np.ndarray, p: tuple[float, ...],
 
 
 def initial_state(model, t0: float, p: tuple[float, ...]) -> tuple[np.ndarray, list[str]]:
-    """Differential states at rest plus component initial values; and which values given
-    for eliminated or algebraic variables disagree with the solution (checked later)."""
+    """Differential states at rest, then the components' initial values applied.
+
+    A value given for a state is set directly; one given for an expression of states (a
+    capacitor between two floating nodes, an eliminated inductor current) is met by the
+    smallest change of the differential states (Gauss-Newton, minimum norm). Returns the
+    states and a description of every initial value that conflicts with the others.
+    """
     n = len(model.state_names)
+    nd = model.meta["n_diff"]
     y = np.zeros(n)
     _, _, _, _, initial = model.fns
-    vals = initial(t0, y, np.zeros(n), p)
+    entries = model.meta["initial"]
+    k = len(entries)
+    if not k:
+        return y, []
+    target = np.array(initial(t0, y, np.zeros(n), p)[:k], float)
+    # Only initial values written in the netlist are constraints; a parameter's default
+    # (i0 = 0, v0 = 0) is just "from rest" and yields to them.
+    strong = _given(model)
+    direct = [(j, idx) for j, (_, idx, _) in enumerate(entries) if 0 <= idx < nd and
+              strong[j]]
+    for j, idx in direct:
+        y[idx] = target[j]
+
+    def lhs(yy: np.ndarray) -> np.ndarray:
+        return np.array(initial(t0, yy, np.zeros(n), p)[k:], float)
+
+    others = [j for j in range(k) if strong[j] and j not in {d for d, _ in direct}]
+    for _ in range(8):
+        gap = (target - lhs(y))[others]
+        if not others or np.max(np.abs(gap)) <= 1e-12 * (1 + np.max(np.abs(target))):
+            break
+        G = np.zeros((len(others), nd))
+        for c in range(nd):
+            h = 1e-7 * (1 + abs(y[c]))
+            yy = y.copy()
+            yy[c] += h
+            G[:, c] = (lhs(yy)[others] - lhs(y)[others]) / h
+        y[:nd] += np.linalg.lstsq(G, gap, rcond=None)[0]
+    gap = target - lhs(y)
+    bad = [f"{entries[j][0]} = {target[j]:.6g} (got {target[j] - gap[j]:.6g})"
+           for j in others if abs(gap[j]) > 1e-9 * (1 + abs(target[j]))]
+    return y, bad
+
+
+def check_initial(model, t0: float, y: np.ndarray, yp: np.ndarray,
+                  p: tuple[float, ...]) -> list[str]:
+    """Initial values that the consistent start could not honour (for a warning)."""
+    _, _, _, _, initial = model.fns
     k = len(model.meta["initial"])
-    for (_name, idx), v in zip(model.meta["initial"], vals[:k], strict=True):
-        if 0 <= idx < model.meta["n_diff"]:
-            y[idx] = v
-    return y, []
+    if not k:
+        return []
+    vals = np.array(initial(t0, y, yp, p), float)
+    target, got = vals[:k], vals[k:]
+    strong = _given(model)
+    return [f"{name} = {target[j]:.6g} (the circuit gives {got[j]:.6g})"
+            for j, (name, _, _) in enumerate(model.meta["initial"])
+            if strong[j] and abs(got[j] - target[j]) > 1e-6 * (1 + abs(target[j]))]
+
+
+def _given(model) -> list[bool]:
+    """Which initial-value entries come from values written in the netlist."""
+    explicit = {name for c in model.netlist.components for name, v in c.values.items()
+                if v.explicit}
+    return [any(q in explicit for q in params) for _, _, params in model.meta["initial"]]
 
 
 def simulate(model, stop: float | None = None, params: Mapping[str, float] | None = None, *,
@@ -161,6 +215,15 @@ def simulate(model, stop: float | None = None, params: Mapping[str, float] | Non
     except SolverError as exc:
         return SimResult(t_eval[:1], np.zeros((n, 0)), np.zeros((n, 0)), model.state_names,
                          Status.INIT_FAILED, exc.bare, 0, 0, model, p)
+    if init == "rest":
+        ignored = check_initial(model, 0.0, y0, yp0, p)
+        if ignored:
+            import warnings
+
+            from .model import CircuitWarning
+
+            warnings.warn("initial values that conflict with the circuit or with each other "
+                          "were not met: " + "; ".join(ignored), CircuitWarning, stacklevel=3)
     # Corners closer than IDA can resolve (|tout - t0| ~ 1e-13 t) are merged into one.
     eps = 1e-11 * stop
     edges = [0.0]

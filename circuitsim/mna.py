@@ -165,8 +165,8 @@ def assemble(net: Netlist) -> Dae:
         # power absorbed by the component, in total and per domain (an EMF converts between
         # its electrical and rotational sides; the two parts are what an energy audit needs)
         by_domain: dict[str, sp.Expr] = {}
-        for p, n in spec.ports:
-            dom = DOMAINS[net.nodes[n][0]]
+        for port in spec.cls.ports:
+            dom, p = port.domain, port.name
             by_domain[dom.name] = by_domain.get(dom.name, sp.Integer(0)) + \
                 exports[f"{spec.name}.{p}.{dom.across}"] * \
                 exports[f"{spec.name}.{p}.{dom.through}"]

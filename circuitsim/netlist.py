@@ -43,6 +43,7 @@ class Value:
     loc: SourceLoc
     param: Param
     unit: str
+    explicit: bool = True  # written in the netlist (False: the parameter's default)
 
     def si(self, env: Mapping[str, float]) -> float:
         return ex.evaluate(self.node, env)
@@ -292,6 +293,16 @@ def _parse_value(text: Any, loc: SourceLoc, what: str, comp: str | None = None) 
                            loc, comp) from None
 
 
+def _carries_units(node: ex.Node, dims: Mapping[str, Dim | None]) -> bool:
+    """True when a unit is written in the expression or comes with a named parameter; pure
+    number arithmetic (``2*5``, ``1/1000``) is a bare number, taken in the expected unit."""
+    if node.kind == "unit":
+        return True
+    if node.kind == "name":
+        return dims.get(str(node.value)) is not None
+    return any(_carries_units(a, dims) for a in node.args)
+
+
 def _order_params(raw: _Raw) -> dict[str, GlobalParam]:
     nodes = {k: _parse_value(v, loc, f"parameter '{k}'") for k, (v, loc) in raw.params.items()}
     order: list[str] = []
@@ -359,12 +370,12 @@ class _Builder:
             dim = ex.dimension(node, self.dims)
         except (ValueError, ZeroDivisionError, OverflowError) as exc:
             raise ParameterError(f"parameter '{key}': {exc}", loc, comp) from None
-        if dim is not None and unit not in ("1",) and node.kind != "num":
+        if dim is not None and unit not in ("1",) and _carries_units(node, self.dims):
             _, target = unit_info(unit)
             if not compatible(dim, target):
                 raise ParameterError(f"parameter '{key}': {explain_mismatch(dim, target, unit)}",
                                      loc, comp)
-        elif dim is not None and unit == "1" and dim.dims:
+        elif dim is not None and unit == "1" and dim.dims and _carries_units(node, self.dims):
             raise ParameterError(f"parameter '{key}' must be dimensionless, got {dim}", loc, comp)
         why = param.violation(val)
         if why:
@@ -387,9 +398,10 @@ class _Builder:
                 out[name] = self.value(entry[key], loc_of(key), comp, key, p, unit)
             elif isinstance(p.default, str):
                 src = out[f"{prefix}{p.default}"]
-                out[name] = Value(src.node, src.loc, p, unit)
+                out[name] = Value(src.node, src.loc, p, unit, src.explicit)
             elif p.default is not None:
-                out[name] = Value(ex.Node("num", float(p.default)), loc_of(None), p, unit)
+                out[name] = Value(ex.Node("num", float(p.default)), loc_of(None), p, unit,
+                                  explicit=False)
             else:
                 raise ParameterError(f"missing parameter '{key}' [{unit}] ({p.doc}); add "
                                      f"'{key}: <value>'", loc_of(None), comp)
@@ -518,8 +530,12 @@ class _Builder:
         return TableData(x, y, f"{file.name}:{body['column']}")
 
     def bind_node(self, node: str, domain: str, loc: SourceLoc, comp: str, port: str) -> None:
+        if node in DOMAINS[domain].references:
+            # a reference is per domain ('fixed' serves shafts and sliders alike)
+            self.nodes.setdefault(node, (domain, loc))
+            return
         for d in DOMAINS.values():
-            if node in d.references and node not in DOMAINS[domain].references:
+            if node in d.references:
                 raise NetlistError(f"port '{port}' is {domain} but '{node}' is the {d.name} "
                                    f"reference; use "
                                    f"{' or '.join(DOMAINS[domain].references)}", loc, comp)

@@ -65,7 +65,16 @@ class SimResult:
     def _observed(self) -> dict[str, np.ndarray]:
         if self._obs is None:
             _, _, _, observe, _ = self.model.fns
-            vals = observe(self.t, self.y, self.yp, self.params)
+            try:
+                with np.errstate(all="ignore"):
+                    vals = observe(self.t, self.y, self.yp, self.params)
+            except (ArithmeticError, ValueError) as exc:
+                from .errors import NetlistError
+
+                raise NetlistError(f"a probe or variable cannot be evaluated on this run "
+                                   f"({type(exc).__name__}: {exc}); check the probe "
+                                   f"expressions for division by zero",
+                                   None) from None
             n = len(self.t)
             self._obs = {k: np.broadcast_to(np.asarray(v, float), (n,)).copy()
                          for k, v in zip(self.model.meta["observed"], vals, strict=True)}

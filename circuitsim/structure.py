@@ -18,6 +18,7 @@ No topology is special-cased: everything works on the equations and their incide
 
 from __future__ import annotations
 
+import zlib
 from collections.abc import Mapping
 from dataclasses import dataclass
 
@@ -272,8 +273,15 @@ def dummy_derivatives(sys: _System, B: list[int | None], nominal: Mapping[sp.Sym
 
 
 def _num(e: sp.Expr, nominal: Mapping[sp.Symbol, float]) -> float:
-    vals = {s: nominal.get(s, 0.5 + 0.1 * (hash(s.name) % 7)) for s in e.free_symbols}
-    return float(e.xreplace(vals).evalf()) if vals or e.is_number else 0.0
+    """Value of a Jacobian entry at nominal parameters and a generic point of the unknowns
+    (a fixed, name-derived value: the same choice in every process)."""
+    e = sp.sympify(e)
+    vals = {s: nominal.get(s, 0.5 + 0.1 * (zlib.crc32(s.name.encode()) % 7))
+            for s in e.free_symbols}
+    try:
+        return float(sp.N(e.xreplace(vals)))
+    except (TypeError, ValueError):  # complex or undefined at that point: treat as absent
+        return 0.0
 
 
 def reduce_index(dae: Dae, nominal: Mapping[sp.Symbol, float]) -> IndexOneDae:

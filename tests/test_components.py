@@ -172,3 +172,23 @@ def test_pwm_duty_cycle_average(compile_text):
     last = res.t > 0.09
     assert np.trapezoid(res["v"][last], res.t[last]) / 0.01 == pytest.approx(
         12 * (0.25e-3 + 1e-6) / 1e-3, rel=2e-4)
+
+
+def test_rotational_and_translational_share_the_fixed_reference(compile_text):
+    """'fixed' is the reference of each mechanical domain; bare-number arithmetic in values
+    (2*5e-6, 1/1000) is taken in the parameter's SI unit like a bare number."""
+    model = compile_text("""
+        components:
+          - {name: T1, type: torque, shaft: s, T: 0.1}
+          - {name: Jr, type: inertia, shaft: s, J: 2*5e-6}
+          - {name: Bv, type: damper, shaft: s, b: 1/1000}
+          - {name: F1, type: force, flange: x, F: 1}
+          - {name: M1, type: mass, flange: x, m: 1}
+          - {name: D1, type: tdamper, flange: x, d: 1}
+        probes: {w: s.w, v: x.v}
+        analysis: {stop: 0.1, rtol: 1e-10, atol: 1e-12}
+    """)
+    res = model.simulate()
+    np.testing.assert_allclose(res["w"], 100 * (1 - np.exp(-res.t / 0.01)), rtol=1e-6,
+                               atol=1e-9)
+    np.testing.assert_allclose(res["v"], 1 - np.exp(-res.t), rtol=1e-6, atol=1e-12)
