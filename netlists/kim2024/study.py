@@ -15,7 +15,6 @@ from pathlib import Path
 import numpy as np
 
 import circuitsim as cs
-from circuitsim.analyses import energy_audit
 from circuitsim.sweep import Metrics, parse_range, sweep
 
 HERE = Path(__file__).resolve().parent
