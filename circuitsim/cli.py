@@ -239,15 +239,20 @@ def cmd_components(args) -> int:
 
 
 def cmd_sweep(args) -> int:
+    from .netlist import load
     from .sweep import Metrics, parse_range, plot_sweep, progress_bar, sweep
 
+    first = load(args.netlists[0])
+    units = {n: v.unit for c in first.components for n, v in c.values.items()}
     grid: dict[str, list[float]] = {}
     for item in args.set or []:
         if "=" not in item:
             raise ParameterError(f"--set takes NAME=RANGE (e.g. Lf=1e-9..1e-1:log:9), "
                                  f"got '{item}'")
         name, text = (x.strip() for x in item.split("=", 1))
-        grid[name] = parse_range(text)
+        gp = first.parameters.get(name)
+        grid[name] = parse_range(text, unit=None if gp else units.get(name),
+                                 dim=gp.dim if gp else None)
     metrics = Metrics(probes=tuple(args.probe) if args.probe else None, order=args.order,
                       window=args.window, energy=not args.no_energy)
     rows = sweep(args.netlists, grid, mode="zip" if args.zip else "product", metrics=metrics,
@@ -269,6 +274,123 @@ def cmd_sweep(args) -> int:
         for r in rows:
             print(",".join(str(r.get(k, "")) for k in keys))
     return 1 if failed and len(failed) == len(rows) else 0
+
+
+def _load_model(path: str):
+    from .model import compile as compile_model
+    from .netlist import load
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return compile_model(load(path))
+
+
+def _freqs(text: str, points: int) -> list[float]:
+    from .sweep import parse_range
+
+    if ".." in text and ":" not in text:
+        text = f"{text}:log:{points}"
+    return parse_range(text, unit="Hz")
+
+
+def cmd_op(args) -> int:
+    from .analyses import operating_point, probe_values
+
+    model = _load_model(args.netlist)
+    params = _parse_sets(model, args.set or [])
+    op = operating_point(model, params)
+    probes = probe_values(model, op, params)
+    if args.json:
+        print(json.dumps({"states": dict(zip(op.names, op.y.tolist(), strict=True)),
+                          "rates": {n: float(r) for n, r in zip(op.names, op.yp, strict=True)
+                                    if r}, "probes": probes, "iterations": op.iterations},
+                         indent=1))
+        return 0
+    print(f"operating point of {model.netlist.title} ({op.iterations} Newton steps; shaft "
+          f"ripple averaged over a turn)")
+    for name, v in probes.items():
+        print(f"  {name:<16}{_fmt(v, model.meta['units'].get(name, '')):>22}")
+    for name, y, r in zip(op.names, op.y, op.yp, strict=True):
+        extra = f"   (d/dt = {r:.8g})" if r else ""
+        print(f"  [{name}]{'':<4}{y:>22.10g}{extra}")
+    return 0
+
+
+def cmd_ac(args) -> int:
+    from .analyses import ac, harmonic_response, linearize
+
+    model = _load_model(args.netlist)
+    params = _parse_sets(model, args.set or [])
+    lin = linearize(model, params)
+    if args.order is not None:
+        h = harmonic_response(model, args.order, args.output, params, lin=lin)
+        if args.json:
+            print(json.dumps({"order": h.order, "frequency": h.frequency,
+                              "amplitude": h.amplitude, "phase": h.phase}))
+        else:
+            print(f"order-{h.order:g} response of {args.output}: {h.amplitude:.7g} at "
+                  f"{h.frequency:.6g} Hz (phase {h.phase:.4f} rad)")
+        return 0
+    if not args.input:
+        raise ParameterError("ac needs --input SOURCE (or --order K for a shaft harmonic)")
+    try:
+        res = ac(model, args.input, args.output, _freqs(args.f, args.points), params, lin=lin)
+    except ValueError as exc:
+        raise ParameterError(str(exc)) from None
+    if args.plot:
+        _bode(res, args.plot)
+    if args.json:
+        print(json.dumps(res.as_dict()))
+        return 0
+    print(f"{'f [Hz]':>14}{'|H|':>16}{'phase [deg]':>14}")
+    for f, m, ph in zip(res.frequency, res.magnitude, res.phase, strict=True):
+        print(f"{f:>14.6g}{m:>16.8g}{ph:>14.4f}")
+    return 0
+
+
+def _bode(res, path: str) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, (a1, a2) = plt.subplots(2, 1, figsize=(7, 5), sharex=True)
+    a1.loglog(res.frequency, res.magnitude)
+    a1.set_ylabel(f"|{res.output} / {res.input}|")
+    a2.semilogx(res.frequency, res.phase)
+    a2.set_ylabel("phase [deg]")
+    a2.set_xlabel("frequency [Hz]")
+    for a in (a1, a2):
+        a.grid(alpha=0.3, which="both")
+    fig.tight_layout()
+    _atomic_write(path, lambda p: fig.savefig(p, dpi=110, format="png"))
+    plt.close(fig)
+
+
+def cmd_pss(args) -> int:
+    from .analyses import periodic_steady_state
+
+    model = _load_model(args.netlist)
+    params = _parse_sets(model, args.set or [])
+    ps = periodic_steady_state(model, params, order=args.order, period=args.period)
+    out = {"period": ps.period, "frequency": 1 / ps.period, "iterations": ps.iterations,
+           "probes": {}}
+    for name in model.probe_names:
+        x = ps[name]
+        f, amp, ph = ps.harmonic(name, 1)
+        out["probes"][name] = {"mean": float(x.mean()), "min": float(x.min()),
+                               "max": float(x.max()),
+                               "fundamental": {"frequency": f, "amplitude": amp, "phase": ph}}
+    if args.json:
+        print(json.dumps(out, indent=1))
+        return 0
+    print(f"periodic steady state: period {ps.period:.9g} s ({1 / ps.period:.8g} Hz), "
+          f"{ps.iterations} Newton steps")
+    for name, e in out["probes"].items():
+        u = model.meta["units"].get(name, "")
+        print(f"  {name:<14} mean {_fmt(e['mean'], u):>18}   fundamental "
+              f"{_fmt(e['fundamental']['amplitude'], u):>16}")
+    return 0
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -305,6 +427,31 @@ def build_parser() -> argparse.ArgumentParser:
     w.add_argument("--no-energy", action="store_true", help="skip the energy audit columns")
     w.add_argument("--quiet", action="store_true", help="no progress bar")
     w.set_defaults(func=cmd_sweep)
+    o = sub.add_parser("op", help="DC operating point (rotating machines: averaged model)")
+    o.add_argument("netlist")
+    o.add_argument("--set", action="append", metavar="NAME=VALUE")
+    o.add_argument("--json", action="store_true")
+    o.set_defaults(func=cmd_op)
+    a = sub.add_parser("ac", help="small-signal transfer function around the operating point")
+    a.add_argument("netlist")
+    a.add_argument("--input", help="source component or parameter (e.g. Vin, M.e0)")
+    a.add_argument("--output", required=True, help="probe or variable")
+    a.add_argument("--f", default="10..100e3", help="frequencies [Hz]: 10..100kHz, or a list")
+    a.add_argument("--points", type=int, default=50, help="points of a log range")
+    a.add_argument("--order", type=int, help="instead of --input: the response to the order-K "
+                   "harmonic of the shaft angle in the circuit's equations (back-EMF ripple)")
+    a.add_argument("--set", action="append", metavar="NAME=VALUE")
+    a.add_argument("--plot", help="Bode plot PNG")
+    a.add_argument("--json", action="store_true")
+    a.set_defaults(func=cmd_ac)
+    q = sub.add_parser("pss", help="periodic steady state by shooting")
+    q.add_argument("netlist")
+    q.add_argument("--order", type=float, default=1,
+                   help="rotating circuits: the period is 1/ORDER of a shaft turn (default 1)")
+    q.add_argument("--period", type=float, help="driven circuits: the source period [s]")
+    q.add_argument("--set", action="append", metavar="NAME=VALUE")
+    q.add_argument("--json", action="store_true")
+    q.set_defaults(func=cmd_pss)
     c = sub.add_parser("check", help="validate; show the graph and equation counts")
     c.add_argument("netlist")
     c.set_defaults(func=cmd_check)

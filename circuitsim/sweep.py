@@ -28,15 +28,31 @@ import numpy as np
 from .errors import CircuitsimError, ParameterError
 
 
-def parse_range(text: str) -> list[float]:
-    """Values of a sweep axis: ``1e-9..1e-1:log:9``, ``0..1:lin:5``, or ``1,2,5`` [SI]."""
+def parse_range(text: str, unit: str | None = None, dim=None) -> list[float]:
+    """Values of a sweep axis: ``1e-9..1e-1:log:9``, ``0..1:lin:5``, or ``1,2,5`` [SI].
+
+    A value written with a unit is checked against ``unit`` (a unit string) or ``dim`` (a
+    units.Dim): ``10k`` is not 10 000 but 10 Boltzmann constants, and is refused for Hz.
+    """
     from . import expr as ex
+    from .units import compatible, explain_mismatch, unit_info
+
+    target = dim if dim is not None else (unit_info(unit)[1] if unit else None)
 
     def num(s: str) -> float:
         try:
-            return ex.evaluate(ex.parse(s.strip()), {})
-        except (ex.ExprError, ValueError, KeyError) as exc:
+            node = ex.parse(s.strip())
+            if ex.names(node):
+                raise ex.ExprError("names are not allowed here", s, 0)
+            value = ex.evaluate(node, {})
+            got = ex.dimension(node, {})
+        except (ex.ExprError, ValueError, KeyError, ZeroDivisionError) as exc:
             raise ParameterError(f"sweep value '{s}': {exc}") from None
+        if node.kind == "unit" and target is not None and got is not None and \
+                not compatible(got, target):
+            raise ParameterError(f"value '{s.strip()}': "
+                                 f"{explain_mismatch(got, target, unit or str(target))}")
+        return value
 
     text = text.strip()
     if ".." in text:

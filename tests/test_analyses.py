@@ -1,0 +1,184 @@
+"""Operating point, AC small-signal and periodic steady state (issue #4)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from circuitsim.analyses import (
+    ac,
+    harmonic_response,
+    operating_point,
+    periodic_steady_state,
+    probe_values,
+)
+from circuitsim.errors import SolverError
+
+from conftest import NETLISTS
+from ngspice import have_ngspice, run_ngspice
+from reference import small_signal_i8
+
+BASE = NETLISTS / "kim2024" / "base.yaml"
+FIG9 = {1e-9: 0.380641, 1e-8: 0.380637, 1e-7: 0.380599, 1e-6: 0.380221, 1e-5: 0.376479,
+        1e-4: 0.342658, 1e-3: 0.179293, 1e-2: 0.030793, 1e-1: 0.0033134}
+
+
+@pytest.fixture(scope="module")
+def base():
+    import warnings
+
+    import circuitsim as cs
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return cs.compile(cs.load(BASE))
+
+
+@pytest.fixture(scope="module")
+def base_transient(base):
+    return base.simulate(rtol=1e-9, atol=1e-11)
+
+
+def test_op_equals_the_transient_steady_state(base, base_transient):
+    op = operating_point(base)
+    probes = probe_values(base, op)
+    speed = base_transient.harmonic("speed", order=8, window=1 / 6).offset
+    current = base_transient.harmonic("i_total", order=8, window=1 / 6).offset
+    assert probes["speed"] == pytest.approx(648.505, abs=1e-3)
+    assert probes["i_total"] == pytest.approx(1.36649, abs=1e-5)
+    assert probes["speed"] == pytest.approx(speed, rel=1e-6)
+    assert probes["i_total"] == pytest.approx(current, rel=1e-6)
+
+
+def test_op_explains_a_missing_dc_path(compile_text):
+    """A current source charging a capacitor has no DC solution; the message says why."""
+    model = compile_text("""
+        components:
+          - {name: I1, type: I, p: gnd, n: a, I: 1 mA}
+          - {name: C1, type: C, p: a, n: gnd, C: 1 uF}
+    """)
+    with pytest.raises(SolverError, match="no DC path|bleed resistor"):
+        operating_point(model)
+
+
+def test_rlc_ac_against_closed_form():
+    import circuitsim as cs
+
+    model = cs.compile(cs.load(NETLISTS / "examples" / "rlc.yaml"))
+    f = np.logspace(1, 5, 41)
+    res = ac(model, "V1", "v_c", f)
+    s = 2j * np.pi * f
+    exact = 1 / (1 + s * 10 * 1e-6 + s**2 * 10e-3 * 1e-6)
+    np.testing.assert_allclose(res.H, exact, rtol=1e-8)
+
+
+def test_ripple_as_small_signal_source(base, base_transient):
+    """The 8th-order back-EMF ripple as a small-signal input: within 0.5 % of the transient
+    (they differ by the second-order speed-ripple term, 4e-6 relative)."""
+    h = harmonic_response(base, 8, "i_total")
+    assert h.frequency == pytest.approx(825.70, abs=0.01)
+    assert h.amplitude == pytest.approx(small_signal_i8(), rel=1e-9)
+    transient = base_transient.harmonic("i_total", order=8, window=1 / 6).amplitude
+    assert h.amplitude == pytest.approx(transient, rel=5e-3)
+    assert h.amplitude == pytest.approx(0.38064, rel=5e-3)
+
+
+def test_fig9_curve_by_ac():
+    import warnings
+
+    import circuitsim as cs
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        model = cs.compile(cs.load(NETLISTS / "kim2024" / "case1.yaml"))
+    for lf, ref in FIG9.items():
+        h = harmonic_response(model, 8, "i_total", params={"Lf": lf, "Rf": 0.0})
+        assert h.amplitude == pytest.approx(ref, rel=5e-3), lf
+
+
+NETWORKS = {
+    "rc": ("""
+        components:
+          - {name: V1, type: V, p: in, n: gnd, V: 0}
+          - {name: R1, type: R, p: in, n: out, R: 1 kohm}
+          - {name: C1, type: C, p: out, n: gnd, C: 100 nF}
+        probes: {out: out.v}
+    """, "V1 in 0 DC 0 AC 1\nR1 in out 1k\nC1 out 0 100n\n"),
+    "rlc": ("""
+        components:
+          - {name: V1, type: V, p: in, n: gnd, V: 0}
+          - {name: R1, type: R, p: in, n: a, R: 10 ohm}
+          - {name: L1, type: L, p: a, n: out, L: 10 mH}
+          - {name: C1, type: C, p: out, n: gnd, C: 1 uF}
+          - {name: R2, type: R, p: out, n: gnd, R: 1 kohm}
+        probes: {out: out.v}
+    """, "V1 in 0 DC 0 AC 1\nR1 in a 10\nL1 a out 10m\nC1 out 0 1u\nR2 out 0 1k\n"),
+    "lc": ("""
+        components:
+          - {name: V1, type: V, p: in, n: gnd, V: 0}
+          - {name: L1, type: L, p: in, n: m, L: 1 mH}
+          - {name: C1, type: C, p: m, n: gnd, C: 10 uF}
+          - {name: L2, type: L, p: m, n: out, L: 1 mH}
+          - {name: R2, type: R, p: out, n: gnd, R: 50 ohm}
+        probes: {out: out.v}
+    """, "V1 in 0 DC 0 AC 1\nL1 in m 1m\nC1 m 0 10u\nL2 m out 1m\nR2 out 0 50\n"),
+}
+
+
+@pytest.mark.ngspice
+@pytest.mark.parametrize("name", sorted(NETWORKS))
+def test_ac_against_ngspice(name, compile_text):
+    if not have_ngspice():
+        if __import__("os").environ.get("CI"):
+            pytest.fail("ngspice missing: install the Debian package")
+        pytest.skip("ngspice missing: install the Debian package")
+    yaml_text, deck = NETWORKS[name]
+    ng = run_ngspice(f"* {name}\n{deck}.ac dec 20 10 100k\n", ["vm(out)", "vp(out)"])
+    f = ng["time"]  # the scale column: frequency
+    model = compile_text(yaml_text)
+    res = ac(model, "V1", "out", f)
+    np.testing.assert_allclose(res.magnitude, ng["vm(out)"], rtol=1e-6)
+    np.testing.assert_allclose(np.radians(res.phase), ng["vp(out)"], rtol=1e-6, atol=1e-9)
+
+
+def test_pss_of_the_base_model(base, base_transient):
+    ps = periodic_steady_state(base, order=8)
+    f, amp, _ = ps.harmonic("i_total", 1)
+    assert f == pytest.approx(825.70264, abs=1e-3)
+    assert amp == pytest.approx(0.3806411, abs=1e-5)
+    # the same extraction as the long transient's, to its accuracy
+    transient = base_transient.harmonic("i_total", order=8, window=1 / 6)
+    assert amp == pytest.approx(transient.amplitude, rel=1e-6)
+    assert ps["speed"].mean() == pytest.approx(648.505195, abs=1e-4)
+    # a full turn as the section gives the same orbit
+    full = periodic_steady_state(base, order=1)
+    assert full.harmonic("i_total", 8)[1] == pytest.approx(amp, rel=1e-7)
+
+
+CLAMP = """
+    parameters: {A: 5 V}
+    components:
+      - {name: V1, type: V, p: in, n: gnd, V: {sine: {amplitude: A, freq: 1 kHz}}}
+      - {name: R1, type: R, p: in, n: a, R: 100 ohm}
+      - {name: X1, type: varistor, p: a, n: gnd, V_ref: 33 V, I_ref: 1 mA, alpha: 30, C: 10 nF}
+    probes: {i: R1.i}
+    analysis: {stop: 20 ms, rtol: 1e-9, atol: 1e-12}
+"""
+
+
+def test_pss_and_ac_agree_while_linear_and_part_when_the_varistor_clamps(compile_text):
+    model = compile_text(CLAMP)
+    for amp, agree in ((5.0, True), (60.0, False)):
+        ps = periodic_steady_state(model, {"A": amp}, period=1e-3)
+        _, i_pss, _ = ps.harmonic("i", 1)
+        # a unit small-signal source in series with V1 (its offset), scaled to the amplitude
+        i_ac = amp * ac(model, "V1", "i", [1e3]).magnitude[0]
+        if agree:
+            assert i_pss == pytest.approx(i_ac, rel=1e-4)
+        else:
+            assert i_pss > 5 * i_ac  # the clamp conducts: far more current than linear
+        # the shooting result is the long transient's periodic state
+        tr = model.simulate(stop=0.02, params={"A": amp}, step=1e-6)
+        last = tr.t >= 0.019
+        i_tr = np.max(np.abs(tr["i"][last]))
+        assert np.max(np.abs(ps["i"])) == pytest.approx(i_tr, rel=1e-3)
