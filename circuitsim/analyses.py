@@ -497,10 +497,17 @@ def periodic_steady_state(model, params: Mapping[str, float] | None = None, *,
     z = np.append(y[free], T) if autonomous else y[free].copy()
     r = gap(*unpack(z))
     it = 0
-    for it in range(1, max_iter + 1):
+    while True:
         scale = np.append(1 + np.abs(z[: len(free)]), z[-1]) if autonomous else 1 + np.abs(z)
         if np.max(np.abs(r) / scale) < tol:
             break
+        it += 1
+        if it > max_iter:
+            from .errors import SolverError
+
+            raise SolverError(f"periodic steady state: shooting did not converge in "
+                              f"{max_iter} Newton steps (residual {np.max(np.abs(r)):.3g}); "
+                              f"try a transient closer to steady state first")
         J = np.empty((r.size, z.size))
         for c in range(z.size):
             h = 1e-6 * scale[c]
@@ -509,12 +516,6 @@ def periodic_steady_state(model, params: Mapping[str, float] | None = None, *,
             J[:, c] = (gap(*unpack(zz)) - r) / h
         z = z + np.linalg.lstsq(J, -r, rcond=None)[0]
         r = gap(*unpack(z))
-    else:
-        from .errors import SolverError
-
-        raise SolverError(f"periodic steady state: shooting did not converge in {max_iter} "
-                          f"Newton steps (residual {np.max(np.abs(r)):.3g}); try a transient "
-                          f"closer to steady state first")
     y0, T = unpack(z)
     grid = np.arange(samples + 1) * T / samples
     ys, yps = flow(y0, T, grid)

@@ -57,7 +57,7 @@ def test_op_explains_a_missing_dc_path(compile_text):
           - {name: I1, type: I, p: gnd, n: a, I: 1 mA}
           - {name: C1, type: C, p: a, n: gnd, C: 1 uF}
     """)
-    with pytest.raises(SolverError, match="no DC path|bleed resistor"):
+    with pytest.raises(SolverError, match=r"no DC path|bleed resistor"):
         operating_point(model)
 
 
