@@ -115,6 +115,15 @@ class Signal:
 
 
 @dataclass(frozen=True, slots=True)
+class Expression:
+    """A behavioural expression (like SPICE's B-source) of time ``t``, netlist parameters and
+    circuit quantities named as probes are (``x.v``, ``M.i``, ``rotor.phi``). Numbers are SI."""
+
+    unit: str
+    doc: str
+
+
+@dataclass(frozen=True, slots=True)
 class Branch:
     """A conductive path between two ports (``None`` is the domain's reference) and its kind.
 
@@ -144,17 +153,17 @@ class Component:
 
     def __getattribute__(self, attr: str) -> Any:
         cls_attr = type(self).__dict__.get(attr) or _inherited(type(self), attr)
-        if isinstance(cls_attr, (Param, Option, RecordList, Signal)):
+        if isinstance(cls_attr, (Param, Option, RecordList, Signal, Expression)):
             return object.__getattribute__(self, "_values")[attr]
         return object.__getattribute__(self, attr)
 
     @classmethod
-    def declared(cls) -> dict[str, Param | Option | RecordList | Signal]:
+    def declared(cls) -> dict[str, Param | Option | RecordList | Signal | Expression]:
         """All parameter-like declarations of the class, in declaration order."""
         out: dict[str, Any] = {}
         for klass in reversed(cls.__mro__):
             for k, v in vars(klass).items():
-                if isinstance(v, (Param, Option, RecordList, Signal)):
+                if isinstance(v, (Param, Option, RecordList, Signal, Expression)):
                     out[k] = v
         return out
 

@@ -19,6 +19,7 @@ from .component import (
     DOMAINS,
     WAVEFORMS,
     Component,
+    Expression,
     Option,
     PortScope,
     RecordList,
@@ -143,7 +144,13 @@ def assemble(net: Netlist) -> Dae:
             integral_domains[sym.name] = dom.name
         return integrals[node]
 
-    for spec in net.components:
+    # Behavioural components read other components' quantities: build them last.
+    def behavioural(spec: ComponentSpec) -> bool:
+        return any(isinstance(d, Expression) for d in spec.cls.declared().values())
+
+    ordered = [c for c in net.components if not behavioural(c)] + \
+        [c for c in net.components if behavioural(c)]
+    for spec in ordered:
         comp, scope = _instantiate(spec, t, der, new, potentials, flows, integral, params,
                                    breaks, tables, exports, units)
         for eq in [*comp.bind(scope), *comp.equations(scope)]:
@@ -228,6 +235,24 @@ def _instantiate(spec: ComponentSpec, t, der, new, potentials, flows, integral, 
             values[key] = wave.expr(t, fields, data)
             if type(wave).breakpoints is not Waveform.breakpoints:
                 breaks.append(BreakSource(kind, tuple(fields.items())))
+        elif isinstance(d, Expression):
+            node = ex.parse(spec.structure[key], allow_unit=False)
+            scope_names: dict[str, Any] = dict(exports)
+            scope_names["t"] = t
+            prefix = f"{spec.name}.{key}."
+            scope_names.update({n[len(prefix):]: psym(n) for n in spec.values
+                                if n.startswith(prefix)})
+            missing = sorted(ex.names(node) - set(scope_names))
+            if missing:
+                from difflib import get_close_matches
+
+                close = get_close_matches(missing[0], list(scope_names), n=3)
+                raise NetlistError(
+                    f"expression '{key}' names unknown quantity '{missing[0]}'" +
+                    (f" (did you mean {', '.join(close)}?)" if close else
+                     " (use netlist parameters, t, or quantities such as NODE.v, SHAFT.w, "
+                     "COMP.i)"), spec.loc, spec.name)
+            values[key] = ex.to_sympy(node, scope_names)
         else:
             values[key] = psym(f"{spec.name}.{key}")
     comp = spec.cls(spec.name, values)

@@ -23,6 +23,7 @@ from .component import (
     DOMAINS,
     WAVEFORMS,
     Component,
+    Expression,
     Option,
     Param,
     RecordList,
@@ -465,8 +466,30 @@ class _Builder:
                 kind, n = self.signal(entry.get(key, d.default), loc_of(key), name, key, d,
                                       values, tables, path)
                 structure[key] = (kind, n)
+            elif isinstance(d, Expression):
+                structure[key] = self.expression(entry.get(key), loc_of(key), name, key, d,
+                                                 values)
         return ComponentSpec(name, typ, cls, tuple(ports), values, structure, loc,
                              tuple(tables))
+
+    def expression(self, raw: Any, loc: SourceLoc, comp: str, key: str, d: Expression,
+                   values: dict[str, Value]) -> str:
+        """A behavioural expression: its netlist parameters become run-time values of the
+        component; the other names are circuit quantities, resolved when the DAE is built."""
+        if raw is None or isinstance(raw, bool):
+            raise ParameterError(f"missing expression '{key}' [{d.unit}] ({d.doc}), e.g. "
+                                 f"'{key}: Kp*(ref.v - x.x)'", loc, comp)
+        text = str(raw)
+        try:
+            node = ex.parse(text, allow_unit=False)
+        except ex.ExprError as exc:
+            raise NetlistError(f"expression '{key}': {exc}. Behavioural expressions use "
+                               f"numbers in SI, netlist parameters, t and circuit quantities "
+                               f"named as in probes", loc, comp) from None
+        for pname in sorted(ex.names(node) & set(self.params)):
+            values[f"{comp}.{key}.{pname}"] = Value(ex.Node("name", pname), loc,
+                                                   Param("1", f"parameter {pname}"), "1")
+        return text
 
     def signal(self, raw: Any, loc: SourceLoc, comp: str, key: str, d: Signal,
                values: dict[str, Value], tables: list[TableData], path: str) -> tuple[str, int]:

@@ -2,7 +2,15 @@
 
 from __future__ import annotations
 
-from circuitsim.component import Branch, OneFlange, OnePort, OneTFlange, Signal, register
+from circuitsim.component import (
+    Branch,
+    Expression,
+    OneFlange,
+    OnePort,
+    OneTFlange,
+    Signal,
+    register,
+)
 
 
 @register("V", "vsource")
@@ -69,3 +77,67 @@ class ForceSource(OneTFlange):
 
     def equations(self, x):
         return [x.f + self.F]
+
+
+@register("BV", "bvoltage")
+class BehaviouralVoltage(OnePort):
+    """Behavioural voltage source (SPICE B-source): v = expr(t, parameters, circuit quantities).
+
+    Parameters
+    ----------
+    expr : [V] e.g. ``Kp*(ref.v - out.v)``
+    """
+
+    branches = (Branch("p", "n", "X"),)
+    expr = Expression("V", "source voltage")
+
+    def equations(self, x):
+        return [x.v - self.expr]
+
+
+@register("BI", "bcurrent")
+class BehaviouralCurrent(OnePort):
+    """Behavioural current source: i = expr, flowing from p through the source to n.
+
+    Parameters
+    ----------
+    expr : [A] e.g. ``g*(a.v - b.v)``
+    """
+
+    branches = (Branch("p", "n", "X"),)
+    expr = Expression("A", "source current")
+
+    def equations(self, x):
+        return [x.i - self.expr]
+
+
+@register("btorque")
+class BehaviouralTorque(OneFlange):
+    """Behavioural torque: the shaft receives T = expr (e.g. a controller's output).
+
+    Parameters
+    ----------
+    expr : [N*m]
+    """
+
+    branches = (Branch("shaft", None, "X"),)
+    expr = Expression("N*m", "torque delivered to the shaft")
+
+    def equations(self, x):
+        return [x.tau + self.expr]
+
+
+@register("bforce")
+class BehaviouralForce(OneTFlange):
+    """Behavioural force: the flange receives F = expr (e.g. a PD position loop).
+
+    Parameters
+    ----------
+    expr : [N] e.g. ``Kp*(ref.v - cart.x) - Kd*cart.v``
+    """
+
+    branches = (Branch("flange", None, "X"),)
+    expr = Expression("N", "force delivered to the flange")
+
+    def equations(self, x):
+        return [x.f + self.expr]

@@ -192,3 +192,44 @@ def test_rotational_and_translational_share_the_fixed_reference(compile_text):
     np.testing.assert_allclose(res["w"], 100 * (1 - np.exp(-res.t / 0.01)), rtol=1e-6,
                                atol=1e-9)
     np.testing.assert_allclose(res["v"], 1 - np.exp(-res.t), rtol=1e-6, atol=1e-12)
+
+
+def test_behavioural_force_closes_a_pd_loop(compile_text):
+    """A B-source force Kp (ref - x) - Kd v on a 1 kg mass; Kp = 400, Kd = 40: critically
+    damped with w0 = 20 rad/s, x = r (1 - (1 + w0 t) exp(-w0 t))."""
+    model = compile_text("""
+        parameters: {Kp: 400, Kd: 40}
+        components:
+          - {name: Vref, type: V, p: ref, n: gnd, V: {step: {v1: 0.1, rise: 1 ns}}}
+          - {name: Rref, type: R, p: ref, n: gnd, R: 1 kohm}
+          - {name: F1, type: bforce, flange: cart, expr: "Kp*(ref.v - cart.x) - Kd*cart.v"}
+          - {name: M1, type: mass, flange: cart, m: 1}
+        probes: {x: cart.x, f: -F1.f}
+        analysis: {stop: 1.0, step: 1 ms, rtol: 1e-10, atol: 1e-13}
+    """)
+    res = model.simulate()
+    x = 0.1 * (1 - (1 + 20 * res.t) * np.exp(-20 * res.t))
+    np.testing.assert_allclose(res["x"], x, rtol=1e-6, atol=1e-9)
+    # parameters of the expression are run-time values like any other
+    stiff = model.simulate(params={"Kp": 1600, "Kd": 80})
+    np.testing.assert_allclose(stiff["x"], 0.1 * (1 - (1 + 40 * stiff.t) *
+                                                  np.exp(-40 * stiff.t)), rtol=1e-6, atol=1e-9)
+
+
+def test_behavioural_expression_errors_name_the_line(write_netlist):
+    import circuitsim as cs
+
+    path = write_netlist("""
+        components:
+          - {name: M1, type: mass, flange: cart, m: 1}
+          - {name: F1, type: bforce, flange: cart, expr: "3*cart.xx"}
+    """)
+    with pytest.raises(cs.CircuitsimError, match=r"net.yaml:3: F1: .*'cart.xx'.*cart.x"):
+        cs.compile(cs.load(path))
+    path = write_netlist("""
+        components:
+          - {name: M1, type: mass, flange: cart, m: 1}
+          - {name: F1, type: bforce, flange: cart, expr: "__import__('os')"}
+    """, "b.yaml")
+    with pytest.raises(cs.NetlistError, match=r"b.yaml:3: F1: .*unknown function"):
+        cs.load(path)
