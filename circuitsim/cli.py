@@ -452,6 +452,18 @@ def build_parser() -> argparse.ArgumentParser:
     q.add_argument("--set", action="append", metavar="NAME=VALUE")
     q.add_argument("--json", action="store_true")
     q.set_defaults(func=cmd_pss)
+    # Studies that live in their own modules register their subcommands themselves
+    # (each module keeps its top-level imports light: this runs on every CLI call).
+    import importlib
+
+    for study in ("fit", "diagnose", "identify"):
+        try:
+            mod = importlib.import_module(f".{study}", __package__)
+        except ModuleNotFoundError as exc:
+            if exc.name != f"{__package__}.{study}":
+                raise
+            continue
+        mod.add_cli(sub)
     c = sub.add_parser("check", help="validate; show the graph and equation counts")
     c.add_argument("netlist")
     c.set_defaults(func=cmd_check)
