@@ -206,7 +206,7 @@ def component_table(markdown: bool = False) -> str:
     """The component registry as a table (type, ports, parameters, summary)."""
     import circuitsim_components  # noqa: F401
 
-    from .component import COMPONENTS, Option, Param, RecordList, Signal
+    from .component import COMPONENTS, Expression, Option, Param, RecordList, Signal
 
     rows = []
     seen = set()
@@ -219,6 +219,8 @@ def component_table(markdown: bool = False) -> str:
         for k, d in cls.declared().items():
             if isinstance(d, (Param, Signal)):
                 params.append(f"{k} [{d.unit}]")
+            elif isinstance(d, Expression):
+                params.append(f"{k}: expression [{d.unit}]")
             elif isinstance(d, RecordList):
                 params.append(f"{k}: list of {{{', '.join(d.fields)}}}")
             elif isinstance(d, Option):
