@@ -103,6 +103,7 @@ class Netlist:
     probes: Mapping[str, Probe]
     analysis: Analysis
     nodes: Mapping[str, tuple[str, SourceLoc]] = field(default_factory=dict)
+    raw: Any = field(default=None, repr=False, compare=False)
 
     def component(self, name: str) -> ComponentSpec:
         for c in self.components:
@@ -240,14 +241,77 @@ def _read_yaml(path: Path) -> Any:
 
 
 @dataclass
-class _Raw:
-    """Merged raw sections of a file and its includes, with locations."""
+class RawNetlist:
+    """Merged raw sections of a file and its includes, with locations: what the YAML said,
+    before typing. Patches (the diagnosis's effects) edit a copy and build it again; ``dump``
+    writes it back as one self-contained netlist."""
 
     params: dict[str, tuple[Any, SourceLoc]] = field(default_factory=dict)
     comps: list[tuple[Mapping, SourceLoc, str]] = field(default_factory=list)
     probes: dict[str, tuple[Any, SourceLoc]] = field(default_factory=dict)
     analysis: dict[str, tuple[Any, SourceLoc]] = field(default_factory=dict)
     title: str = ""
+    path: str = ""
+
+    def copy(self) -> RawNetlist:
+        import copy
+
+        return copy.deepcopy(self)
+
+    def component_entry(self, name: str) -> dict:
+        for entry, _, _ in self.comps:
+            if str(entry["name"]) == name:
+                return entry  # type: ignore[return-value]
+        raise KeyError(name)
+
+    def dump(self, path: str | Path, header: str = "") -> None:
+        """Write a self-contained netlist (includes merged; table files re-pointed), atomically."""
+        import io
+        import os
+        import tempfile
+
+        from ruamel.yaml import YAML
+
+        out_dir = Path(path).resolve().parent
+
+        def plain(v: Any) -> Any:
+            if isinstance(v, Mapping):
+                return {str(k): plain(x) for k, x in v.items()}
+            if isinstance(v, list):
+                return [plain(x) for x in v]
+            return v
+
+        comps = []
+        for entry, _, file in self.comps:
+            e = plain(entry)
+            for v in e.values():
+                if isinstance(v, dict) and isinstance(v.get("table"), dict) and \
+                        "file" in v["table"]:
+                    src = (Path(file).parent / v["table"]["file"]).resolve()
+                    v["table"]["file"] = os.path.relpath(src, out_dir)
+            comps.append(e)
+        doc: dict[str, Any] = {"title": self.title}
+        if self.params:
+            doc["parameters"] = {k: plain(v) for k, (v, _) in self.params.items()}
+        doc["components"] = comps
+        if self.probes:
+            doc["probes"] = {k: plain(v) for k, (v, _) in self.probes.items()}
+        if self.analysis:
+            doc["analysis"] = {k: plain(v) for k, (v, _) in self.analysis.items()}
+        yaml = YAML(typ="rt")
+        yaml.default_flow_style = False
+        yaml.width = 100
+        buf = io.StringIO()
+        yaml.dump(doc, buf)
+        text = "".join(f"# {ln}\n" if ln else "#\n" for ln in header.splitlines()) + \
+            buf.getvalue()
+        fd, tmp = tempfile.mkstemp(dir=out_dir, prefix=".circuitsim-", suffix=".yaml")
+        with os.fdopen(fd, "w", encoding="utf-8") as fh:
+            fh.write(text)
+        os.replace(tmp, path)
+
+
+_Raw = RawNetlist
 
 
 def _gather(path: Path, raw: _Raw, stack: tuple[Path, ...]) -> None:
@@ -578,8 +642,16 @@ def load(path: str | Path) -> Netlist:
     import circuitsim_components  # noqa: F401 - fills the registries
 
     path = Path(path)
-    raw = _Raw()
+    raw = _Raw(path=str(path))
     _gather(path, raw, ())
+    return build(raw)
+
+
+def build(raw: RawNetlist) -> Netlist:
+    """Type a raw netlist (as read, or as patched): the second half of ``load``."""
+    import circuitsim_components  # noqa: F401 - fills the registries
+
+    path = Path(raw.path)
     params = _order_params(raw)
     nodes: dict[str, tuple[str, SourceLoc]] = {}
     b = _Builder(params, nodes)
@@ -613,7 +685,7 @@ def load(path: str | Path) -> Netlist:
     tables = [t for c in comps for t in c.tables]
     if tables:
         comps = _index_tables(comps)
-    return Netlist(str(path), raw.title, params, tuple(comps), probes, analysis, nodes)
+    return Netlist(str(path), raw.title, params, tuple(comps), probes, analysis, nodes, raw)
 
 
 def _free_symbol(name: str):

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import sympy as sp
+
 from circuitsim.component import Branch, Component, OnePort, Param, Pin, register
 
 
@@ -80,3 +82,55 @@ class Ground(Component):
 
     def equations(self, x):
         return [x.p.v]
+
+
+@register("Lsat", "saturating_inductor")
+class SaturatingInductor(OnePort):
+    """Inductor whose inductance falls with current (as Modelica's SaturatingInductor):
+    psi = Linf i + (Lzer - Linf) Ipar atan(i / Ipar), v = d psi/dt + R i.
+
+    Parameters
+    ----------
+    Lzer : [H] inductance at zero current
+    Linf : [H] inductance deep in saturation (<= Lzer)
+    Ipar : [A] knee current: the differential inductance has fallen half way at i = Ipar
+    R : [ohm] series (winding) resistance
+    i0 : [A] initial current
+    """
+
+    branches = (Branch("p", "n", "L"),)
+    Lzer = Param("H", "inductance at zero current", positive=True)
+    Linf = Param("H", "saturated inductance", positive=True)
+    Ipar = Param("A", "knee current", positive=True)
+    R = Param("ohm", "series resistance", default=0.0, nonnegative=True)
+    i0 = Param("A", "initial current", default=0.0)
+
+    def equations(self, x):
+        l_diff = self.Linf + (self.Lzer - self.Linf) / (1 + (x.i / self.Ipar) ** 2)
+        return [x.v - l_diff * x.der(x.i) - self.R * x.i]
+
+    def initial(self, x):
+        return {x.i: self.i0}
+
+    def energy(self, x):
+        # W = integral of i dpsi = Linf i^2/2 + (Lzer - Linf) Ipar^2 ln(1 + (i/Ipar)^2) / 2
+        return self.Linf * x.i**2 / 2 + (self.Lzer - self.Linf) * self.Ipar**2 * \
+            sp.log(1 + (x.i / self.Ipar) ** 2) / 2
+
+
+@register("Rdrift", "drifting_resistor")
+class DriftingResistor(OnePort):
+    """Resistor warming up: v = R0 (1 + alpha t) i (linear drift in time).
+
+    Parameters
+    ----------
+    R0 : [ohm] resistance at t = 0
+    alpha : [1/s] relative drift rate
+    """
+
+    branches = (Branch("p", "n", "R"),)
+    R0 = Param("ohm", "resistance at t = 0", positive=True)
+    alpha = Param("1/s", "relative drift rate", default=0.0)
+
+    def equations(self, x):
+        return [x.v - self.R0 * (1 + self.alpha * x.t) * x.i]

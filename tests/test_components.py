@@ -233,3 +233,39 @@ def test_behavioural_expression_errors_name_the_line(write_netlist):
     """, "b.yaml")
     with pytest.raises(cs.NetlistError, match=r"b.yaml:3: F1: .*unknown function"):
         cs.load(path)
+
+
+def test_saturating_inductor_flux_and_energy(compile_text):
+    """A current ramp i = k t through Lsat: v = dpsi/dt with psi = Linf i + (Lzer - Linf)
+    Ipar atan(i / Ipar); the absorbed energy equals the stored energy."""
+    model = compile_text("""
+        components:
+          - {name: I1, type: I, p: gnd, n: a, I: {pwl: [[0, 0], [10 ms, 2 A]]}}
+          - {name: L1, type: Lsat, p: a, n: gnd, Lzer: 100 mH, Linf: 0.2 mH, Ipar: 0.07 A}
+        probes: {v: a.v, i: L1.i, e: L1.energy, p: L1.power}
+        analysis: {stop: 10 ms, step: 10 us, rtol: 1e-10, atol: 1e-13}
+    """)
+    res = model.simulate()
+    k = 2 / 10e-3
+    i = k * res.t
+    v = (0.2e-3 + (100e-3 - 0.2e-3) / (1 + (i / 0.07) ** 2)) * k
+    np.testing.assert_allclose(res["i"], i, rtol=1e-9, atol=1e-12)
+    inner = (res.t > 0) & (res.t < 10e-3)  # the ramp's corners are where dI/dt jumps
+    np.testing.assert_allclose(res["v"][inner], v[inner], rtol=1e-6)
+    from scipy.integrate import cumulative_simpson
+
+    absorbed = cumulative_simpson(res["p"][inner], x=res.t[inner], initial=0.0)
+    stored = res["e"][inner]
+    assert absorbed[-1] == pytest.approx(stored[-1] - stored[0], rel=1e-6)
+
+
+def test_drifting_resistor(compile_text):
+    model = compile_text("""
+        components:
+          - {name: V1, type: V, p: a, n: gnd, V: 10 V}
+          - {name: R1, type: Rdrift, p: a, n: gnd, R0: 5 ohm, alpha: 0.1}
+        probes: {i: R1.i}
+        analysis: {stop: 10, step: 0.1, rtol: 1e-11, atol: 1e-14}
+    """)
+    res = model.simulate()
+    np.testing.assert_allclose(res["i"], 10 / (5 * (1 + 0.1 * res.t)), rtol=1e-9)
