@@ -1,0 +1,209 @@
+"""The effect catalog: physical effects a model may lack, each a patch to the netlist.
+
+An effect proposes candidates (effect x target x, for harmonic effects, an order). A
+candidate adds new netlist parameters (its free parameters, starting at their *null* values,
+where the patched circuit behaves exactly as the original) and components; applying it to a
+raw netlist gives a new topology that is compiled (and cached) once. The patched netlist is
+an output a user can read, keep and run. Catalog ids are part of the interface.
+
+Series effects are behavioural voltage sources in series with the target (``v = expr``), so
+that their null value is an exact zero and their parameters may take either sign.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+from .errors import SourceLoc
+from .netlist import Netlist, RawNetlist
+
+CATALOG_IDS = ("series-resistance", "source-resistance", "brush-drop", "coulomb-friction",
+               "viscous-friction", "cogging", "emf-harmonic", "inductor-saturation",
+               "resistance-drift", "force-offset")
+
+
+@dataclass(frozen=True)
+class Candidate:
+    """One proposed patch. ``free``: new parameter -> (start value, lower, upper) [SI]."""
+
+    effect: str
+    target: str
+    free: Mapping[str, tuple[float, float, float]]
+    fixed: Mapping[str, float]
+    what: str
+    edit: Callable[[RawNetlist], None] = field(repr=False, compare=False)
+
+    @property
+    def key(self) -> str:
+        order = self.fixed.get("order")
+        return f"{self.effect}:{self.target}" + (f":{order:g}" if order is not None else "")
+
+    def apply(self, raw: RawNetlist) -> RawNetlist:
+        """A patched copy of ``raw`` (the free parameters at their start values)."""
+        out = raw.copy()
+        loc = SourceLoc(raw.path or "<patch>")
+        for name, (start, _, _) in self.free.items():
+            out.params[name] = (repr(float(start)), loc)
+        self.edit(out)
+        return out
+
+
+def _pname(effect: str, target: str, what: str) -> str:
+    return f"{effect.replace('-', '_')}_{target.replace('.', '_')}_{what}"
+
+
+def _insert_series(raw: RawNetlist, target: str, name: str, expr: str) -> None:
+    """Put a behavioural voltage source between the target's pin n and its old node."""
+    entry = raw.component_entry(target)
+    node = str(entry["n"])
+    mid = f"{name}_n"
+    entry["n"] = mid
+    loc = SourceLoc(raw.path or "<patch>")
+    raw.comps.append(({"name": name, "type": "BV", "p": mid, "n": node, "expr": expr}, loc,
+                      raw.path))
+
+
+def _add(raw: RawNetlist, entry: dict) -> None:
+    raw.comps.append((entry, SourceLoc(raw.path or "<patch>"), raw.path))
+
+
+def _electrical_two_pins(net: Netlist, kinds: set[str] | None = None,
+                         exclude: set[str] = frozenset()) -> list[str]:
+    out = []
+    for c in net.components:
+        ports = {p.name: p.domain.name for p in c.cls.ports}
+        if ports.get("p") != "electrical" or ports.get("n") != "electrical":
+            continue
+        bk = {b.kind for b in c.cls.branches if {b.a, b.b} == {"p", "n"}}
+        if kinds is not None and not (bk & kinds):
+            continue
+        if bk & exclude:
+            continue
+        out.append(c.name)
+    return out
+
+
+def _converters(net: Netlist) -> list[tuple[str, str]]:
+    """(component, shaft node) of electromechanical converters (pins p, n and a shaft)."""
+    out = []
+    for c in net.components:
+        ports = {p.name: p.domain.name for p in c.cls.ports}
+        if ports.get("p") == "electrical" and "rotational" in ports.values():
+            shaft = next(n for (pn, n) in c.ports if ports[pn] == "rotational")
+            out.append((c.name, shaft))
+    return out
+
+
+def _mechanical_nodes(net: Netlist) -> list[tuple[str, str]]:
+    return [(n, d) for n, (d, _) in net.nodes.items()
+            if d in ("rotational", "translational") and n != "fixed"]
+
+
+def candidates(net: Netlist, orders: Mapping[str, list[int]] | None = None) -> list[Candidate]:
+    """Every candidate of the catalog for this netlist. ``orders``: harmonic orders per shaft
+    node found in the residual spectrum (for ``cogging`` and ``emf-harmonic``)."""
+    orders = orders or {}
+    out: list[Candidate] = []
+    for t in _electrical_two_pins(net, exclude={"V", "I"}):
+        p = _pname("series-resistance", t, "R")
+        out.append(Candidate("series-resistance", t, {p: (0.0, -1e3, 1e3)}, {},
+                             f"a resistance R in series with {t}",
+                             lambda r, t=t, p=p: _insert_series(r, t, f"SR_{t}",
+                                                                f"{p}*{t}.i")))
+    for t in _electrical_two_pins(net, kinds={"V"}):
+        p = _pname("source-resistance", t, "R")
+        out.append(Candidate("source-resistance", t, {p: (0.0, -1e3, 1e3)}, {},
+                             f"an internal resistance R of source {t}",
+                             lambda r, t=t, p=p: _insert_series(r, t, f"RS_{t}",
+                                                                f"{p}*{t}.i")))
+    for t, shaft in _converters(net):
+        p = _pname("brush-drop", t, "Vb")
+        out.append(Candidate("brush-drop", t, {p: (0.0, -50.0, 50.0)}, {"i_eps": 0.01},
+                             f"a brush contact drop Vb*sign(i) in series with {t}",
+                             lambda r, t=t, p=p: _insert_series(
+                                 r, t, f"BD_{t}", f"{p}*tanh({t}.i/0.01)")))
+        for k in orders.get(shaft, []):
+            a = _pname("emf-harmonic", f"{t}_{k}", "a")
+            b = _pname("emf-harmonic", f"{t}_{k}", "b")
+            out.append(Candidate(
+                "emf-harmonic", t, {a: (0.0, -10.0, 10.0), b: (0.0, -10.0, 10.0)},
+                {"order": k}, f"an extra back-EMF harmonic of order {k} in {t}",
+                lambda r, t=t, k=k, a=a, b=b, s=shaft: _insert_series(
+                    r, t, f"EH{k}_{t}",
+                    f"{s}.w*({a}*sin({k}*{s}.phi) + {b}*cos({k}*{s}.phi))")))
+    for node, dom in _mechanical_nodes(net):
+        rot = dom == "rotational"
+        unit_f = "torque" if rot else "force"
+        p = _pname("coulomb-friction", node, "c")
+        out.append(Candidate(
+            "coulomb-friction", node, {p: (0.0, 0.0, 1e4)}, {},
+            f"Coulomb friction (or a constant load {unit_f}) on {node}",
+            lambda r, n=node, p=p, rot=rot: _add(r, {
+                "name": f"CF_{n}", "type": "friction" if rot else "tfriction",
+                ("shaft" if rot else "flange"): n, ("tau_c" if rot else "f_c"): p,
+                ("w_brk" if rot else "v_brk"): 0.1 if rot else 1e-3})))
+        p = _pname("viscous-friction", node, "b")
+        out.append(Candidate(
+            "viscous-friction", node, {p: (0.0, 0.0, 1e6)}, {}, f"viscous friction on {node}",
+            lambda r, n=node, p=p, rot=rot: _add(r, {
+                "name": f"VF_{n}", "type": "damper" if rot else "tdamper",
+                ("shaft" if rot else "flange"): n, ("b" if rot else "d"): p})))
+        p = _pname("force-offset", node, "F")
+        out.append(Candidate(
+            "force-offset", node, {p: (0.0, -1e4, 1e4)}, {},
+            f"a constant {unit_f} offset on {node}",
+            lambda r, n=node, p=p, rot=rot: _add(r, {
+                "name": f"FO_{n}", "type": "torque" if rot else "force",
+                ("shaft" if rot else "flange"): n, ("T" if rot else "F"): p})))
+        if rot:
+            for k in orders.get(node, []):
+                a = _pname("cogging", f"{node}_{k}", "a")
+                b = _pname("cogging", f"{node}_{k}", "b")
+                out.append(Candidate(
+                    "cogging", node, {a: (0.0, -1e3, 1e3), b: (0.0, -1e3, 1e3)}, {"order": k},
+                    f"a cogging torque of order {k} on {node}" +
+                    (" (unbalance)" if k == 1 else ""),
+                    lambda r, n=node, k=k, a=a, b=b: _add(r, {
+                        "name": f"CG{k}_{n}", "type": "cogging", "shaft": n,
+                        "harmonics": [{"order": k, "amplitude": a, "phase": 0},
+                                      {"order": k, "amplitude": b, "phase": 1.5707963267948966}]
+                    })))
+    for c in net.components:
+        if c.type in ("L", "inductor"):
+            p = _pname("inductor-saturation", c.name, "Ipar")
+            q = _pname("inductor-saturation", c.name, "ratio")
+            out.append(Candidate(
+                "inductor-saturation", c.name, {p: (1e6, 1e-6, 1e6), q: (0.01, 1e-4, 1.0)}, {},
+                f"saturation of {c.name}: inductance falling with current",
+                lambda r, n=c.name, p=p, q=q: _saturate(r, n, p, q)))
+        if c.type in ("R", "resistor"):
+            p = _pname("resistance-drift", c.name, "alpha")
+            out.append(Candidate(
+                "resistance-drift", c.name, {p: (0.0, -10.0, 10.0)}, {},
+                f"{c.name} drifting with time (warming up)",
+                lambda r, n=c.name, p=p: _drift(r, n, p)))
+    return out
+
+
+def _saturate(raw: RawNetlist, name: str, ipar: str, ratio: str) -> None:
+    e = raw.component_entry(name)
+    lval = e.pop("L")
+    e["type"] = "Lsat"
+    e["Lzer"] = lval
+    e["Linf"] = f"({lval})*{ratio}" if not isinstance(lval, (int, float)) else \
+        f"{float(lval)!r}*{ratio}"
+    e["Ipar"] = ipar
+
+
+def _drift(raw: RawNetlist, name: str, alpha: str) -> None:
+    e = raw.component_entry(name)
+    e["R0"] = e.pop("R")
+    e["type"] = "Rdrift"
+    e["alpha"] = alpha
+
+
+def describe(cands: list[Candidate]) -> list[dict[str, Any]]:
+    return [{"effect": c.effect, "target": c.target, "free": list(c.free), "fixed": dict(c.fixed),
+             "what": c.what} for c in cands]
