@@ -64,14 +64,19 @@ class Dae:
         return {u for u, d in self.der.items() if d in used}
 
     def pretty(self, latex: bool = False) -> str:
-        inv = {d: u for u, d in self.der.items()}
-        subs = {d: sp.Symbol(f"{u.name}'") for d, u in inv.items()}
-        lines = []
-        for eq, origin in zip(self.equations, self.origins, strict=True):
-            e = eq.xreplace(subs)
-            lines.append(f"{sp.latex(e)} = 0 \\quad \\text{{({origin})}}" if latex
-                         else f"0 = {e}    [{origin}]")
-        return "\n".join(lines)
+        return format_equations(self.equations, self.origins, self.der, latex)
+
+
+def format_equations(equations, origins, der: Mapping[sp.Symbol, sp.Symbol],
+                     latex: bool = False) -> str:
+    """One residual per line, derivatives written x', each with the element it came from."""
+    subs = {d: sp.Symbol(f"{u.name}'") for u, d in der.items()}
+    lines = []
+    for eq, origin in zip(equations, origins, strict=True):
+        e = eq.xreplace(subs)
+        lines.append(f"{sp.latex(e)} = 0 \\quad \\text{{({origin})}}" if latex
+                     else f"0 = {e}    [{origin}]")
+    return "\n".join(lines)
 
 
 class _Derivatives:

@@ -27,7 +27,7 @@ import numpy as np
 import sympy as sp
 
 from .errors import SingularCircuitError
-from .mna import BreakSource, Dae
+from .mna import BreakSource, Dae, format_equations
 
 
 @dataclass(frozen=True)
@@ -57,13 +57,8 @@ class IndexOneDae:
     integrals: Mapping[str, str]
 
     def pretty(self, latex: bool = False) -> str:
-        subs = {d: sp.Symbol(f"{s.name}'") for s, d in zip(self.states, self.yp, strict=True)}
-        out = []
-        for eq, origin in zip(self.equations, self.origins, strict=True):
-            e = eq.xreplace(subs)
-            out.append(f"{sp.latex(e)} = 0 \\quad \\text{{({origin})}}" if latex
-                       else f"0 = {e}    [{origin}]")
-        return "\n".join(out)
+        return format_equations(self.equations, self.origins,
+                                dict(zip(self.states, self.yp, strict=True)), latex)
 
 
 class _System:
