@@ -120,6 +120,10 @@ def _scan_rows(path: str, header: list[str], text_rows: list[list[str]]) -> np.n
                              "or fill the missing value")
         for j, cell in enumerate(row):
             s = cell.strip()
+            if not s:
+                raise _row_error(path, line, f"row {line}, column '{header[j]}' is empty "
+                                 f"(a missing value)",
+                                 "Remove the row, or interpolate the missing sample")
             try:
                 v = float(s)
             except ValueError:

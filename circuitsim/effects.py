@@ -34,6 +34,11 @@ class Candidate:
     fixed: Mapping[str, float]
     what: str
     edit: Callable[[RawNetlist], None] = field(repr=False, compare=False)
+    # a parameter step that moves the outputs measurably but stays linear [SI]; and whether
+    # the effect is invisible to a linearisation at its null value (then it is screened on a
+    # grid of ``grid`` values of its first parameter instead)
+    steps: Mapping[str, float] = field(default_factory=dict)
+    grid: tuple[float, ...] = ()
 
     @property
     def key(self) -> str:
@@ -111,19 +116,21 @@ def candidates(net: Netlist, orders: Mapping[str, list[int]] | None = None) -> l
         out.append(Candidate("series-resistance", t, {p: (0.0, -1e3, 1e3)}, {},
                              f"a resistance R in series with {t}",
                              lambda r, t=t, p=p: _insert_series(r, t, f"SR_{t}",
-                                                                f"{p}*{t}.i")))
+                                                                f"{p}*{t}.i"),
+                             steps={p: 1e-3}))
     for t in _electrical_two_pins(net, kinds={"V"}):
         p = _pname("source-resistance", t, "R")
         out.append(Candidate("source-resistance", t, {p: (0.0, -1e3, 1e3)}, {},
                              f"an internal resistance R of source {t}",
                              lambda r, t=t, p=p: _insert_series(r, t, f"RS_{t}",
-                                                                f"{p}*{t}.i")))
+                                                                f"{p}*{t}.i"),
+                             steps={p: 1e-3}))
     for t, shaft in _converters(net):
         p = _pname("brush-drop", t, "Vb")
         out.append(Candidate("brush-drop", t, {p: (0.0, -50.0, 50.0)}, {"i_eps": 0.01},
                              f"a brush contact drop Vb*sign(i) in series with {t}",
                              lambda r, t=t, p=p: _insert_series(
-                                 r, t, f"BD_{t}", f"{p}*tanh({t}.i/0.01)")))
+                                 r, t, f"BD_{t}", f"{p}*tanh({t}.i/0.01)"), steps={p: 1e-2}))
         for k in orders.get(shaft, []):
             a = _pname("emf-harmonic", f"{t}_{k}", "a")
             b = _pname("emf-harmonic", f"{t}_{k}", "b")
@@ -132,7 +139,8 @@ def candidates(net: Netlist, orders: Mapping[str, list[int]] | None = None) -> l
                 {"order": k}, f"an extra back-EMF harmonic of order {k} in {t}",
                 lambda r, t=t, k=k, a=a, b=b, s=shaft: _insert_series(
                     r, t, f"EH{k}_{t}",
-                    f"{s}.w*({a}*sin({k}*{s}.phi) + {b}*cos({k}*{s}.phi))")))
+                    f"{s}.w*({a}*sin({k}*{s}.phi) + {b}*cos({k}*{s}.phi))"),
+                steps={a: 1e-4, b: 1e-4}))
     for node, dom in _mechanical_nodes(net):
         rot = dom == "rotational"
         unit_f = "torque" if rot else "force"
@@ -143,20 +151,23 @@ def candidates(net: Netlist, orders: Mapping[str, list[int]] | None = None) -> l
             lambda r, n=node, p=p, rot=rot: _add(r, {
                 "name": f"CF_{n}", "type": "friction" if rot else "tfriction",
                 ("shaft" if rot else "flange"): n, ("tau_c" if rot else "f_c"): p,
-                ("w_brk" if rot else "v_brk"): 0.1 if rot else 1e-3})))
+                ("w_brk" if rot else "v_brk"): 0.1 if rot else 1e-3}),
+            steps={p: 1e-4 if rot else 1e-1}))
         p = _pname("viscous-friction", node, "b")
         out.append(Candidate(
             "viscous-friction", node, {p: (0.0, 0.0, 1e6)}, {}, f"viscous friction on {node}",
             lambda r, n=node, p=p, rot=rot: _add(r, {
                 "name": f"VF_{n}", "type": "damper" if rot else "tdamper",
-                ("shaft" if rot else "flange"): n, ("b" if rot else "d"): p})))
+                ("shaft" if rot else "flange"): n, ("b" if rot else "d"): p}),
+            steps={p: 1e-6 if rot else 1.0}))
         p = _pname("force-offset", node, "F")
         out.append(Candidate(
             "force-offset", node, {p: (0.0, -1e4, 1e4)}, {},
             f"a constant {unit_f} offset on {node}",
             lambda r, n=node, p=p, rot=rot: _add(r, {
                 "name": f"FO_{n}", "type": "torque" if rot else "force",
-                ("shaft" if rot else "flange"): n, ("T" if rot else "F"): p})))
+                ("shaft" if rot else "flange"): n, ("T" if rot else "F"): p}),
+            steps={p: 1e-4 if rot else 1e-1}))
         if rot:
             for k in orders.get(node, []):
                 a = _pname("cogging", f"{node}_{k}", "a")
@@ -169,7 +180,7 @@ def candidates(net: Netlist, orders: Mapping[str, list[int]] | None = None) -> l
                         "name": f"CG{k}_{n}", "type": "cogging", "shaft": n,
                         "harmonics": [{"order": k, "amplitude": a, "phase": 0},
                                       {"order": k, "amplitude": b, "phase": 1.5707963267948966}]
-                    })))
+                    }), steps={a: 1e-4, b: 1e-4}))
     for c in net.components:
         if c.type in ("L", "inductor"):
             p = _pname("inductor-saturation", c.name, "Ipar")
@@ -177,13 +188,14 @@ def candidates(net: Netlist, orders: Mapping[str, list[int]] | None = None) -> l
             out.append(Candidate(
                 "inductor-saturation", c.name, {p: (1e6, 1e-6, 1e6), q: (0.01, 1e-4, 1.0)}, {},
                 f"saturation of {c.name}: inductance falling with current",
-                lambda r, n=c.name, p=p, q=q: _saturate(r, n, p, q)))
+                lambda r, n=c.name, p=p, q=q: _saturate(r, n, p, q),
+                grid=(3.0, 1.0, 0.3, 0.1)))
         if c.type in ("R", "resistor"):
             p = _pname("resistance-drift", c.name, "alpha")
             out.append(Candidate(
                 "resistance-drift", c.name, {p: (0.0, -10.0, 10.0)}, {},
                 f"{c.name} drifting with time (warming up)",
-                lambda r, n=c.name, p=p: _drift(r, n, p)))
+                lambda r, n=c.name, p=p: _drift(r, n, p), steps={p: 1e-3}))
     return out
 
 

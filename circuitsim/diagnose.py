@@ -1,0 +1,612 @@
+"""Close the loop: trace a model's residual against a measured record to a physical effect.
+
+1. Fit the declared free parameters (``fit.fit_record``, staged so that a ripple locked to the
+   rotor angle cannot trap it) and compute the residual of every probe.
+2. Analyse it: RMS and NRMSE per probe; spectrum with peaks labelled as orders of the shaft
+   frequency; whiteness (Ljung-Box); correlation with candidate regressors; the noise floor
+   (from first differences, which white noise inflates and smooth structure does not).
+3. Score every effect of the catalog (``effects``: netlist patches exact at their null
+   value), with harmonic orders taken from the residual spectrum: a score test projects the
+   residual on each candidate's sensitivity at its null value (one short simulation per free
+   parameter); effects a linearisation cannot see (saturation) are screened on a small grid.
+   The best few are refitted with full simulation.
+4. Accept an effect only when the Bayesian information criterion falls by more than
+   ``BIC_MARGIN`` *and* it explains at least ``EXCESS_FRACTION`` of the residual above the
+   noise floor (so a slice of an effect outside the catalog is no confident attribution).
+   Repeat greedily; stop when nothing significant remains.
+5. Report the error before and after, the effects in order with parameters, standard errors
+   and evidence, what could not be told apart, and what structure remains.
+
+Top-level imports stay light (numpy only): the CLI imports this module on every call.
+"""
+
+from __future__ import annotations
+
+import base64
+import html
+import io
+import json
+import math
+import os
+import sys
+import tempfile
+import warnings
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from .errors import CircuitsimError
+
+BIC_MARGIN = 10.0  # "very strong" evidence on the Kass-Raftery scale
+EXCESS_FRACTION = 0.3  # share of the above-noise residual an accepted effect must explain
+SCREEN_TOP = 3  # candidates refitted with full simulation per round
+MAX_EFFECTS = 4
+ORDER_TOL = 0.03  # a spectral peak is order k when |f/f_shaft - k| < ORDER_TOL k
+
+
+class DiagnosisError(CircuitsimError):
+    """The diagnosis cannot run on this record or netlist."""
+
+
+@dataclass
+class Accepted:
+    effect: str
+    target: str
+    parameters: dict[str, float]
+    stderr: dict[str, float | None]
+    error_after: float
+    evidence: dict[str, Any]
+
+
+@dataclass
+class Diagnosis:
+    """What the diagnosis found; ``as_dict`` is the diag.json report."""
+
+    error_before: float
+    error_after: float
+    errors_before: dict[str, float]
+    errors_after: dict[str, float]
+    effects: list[Accepted]
+    indistinct: list[str]
+    remaining: dict[str, Any]
+    analysis_before: dict[str, Any]
+    analysis_after: dict[str, Any]
+    raw: Any = field(repr=False, default=None)
+    fit_before: Any = field(repr=False, default=None)
+    fit_after: Any = field(repr=False, default=None)
+    record: Any = field(repr=False, default=None)
+    timings: dict[str, float] = field(default_factory=dict)
+    rejected: list[dict[str, Any]] = field(default_factory=list)
+
+    def as_dict(self) -> dict[str, Any]:
+        return _clean({
+            "error_before": self.error_before, "error_after": self.error_after,
+            "errors": {"before": self.errors_before, "after": self.errors_after},
+            "effects": [{"effect": a.effect, "target": a.target, "parameters": a.parameters,
+                         "stderr": a.stderr, "error_after": a.error_after,
+                         "evidence": a.evidence} for a in self.effects],
+            "indistinct": self.indistinct, "remaining": self.remaining,
+            "analysis_before": self.analysis_before, "analysis_after": self.analysis_after,
+            "considered_not_accepted": self.rejected, "timings": self.timings,
+            "summary": self.summary(),
+        })
+
+    def summary(self) -> str:
+        if not self.effects:
+            head = "nothing significant: no effect of the catalog explains the residual"
+        else:
+            head = "; ".join(f"{a.effect} on {a.target} " +
+                             ", ".join(f"{k} = {v:.4g}" for k, v in a.parameters.items())
+                             for a in self.effects)
+        tail = ("; structure remains: " + self.remaining["note"]) if \
+            self.remaining.get("structure") else ""
+        return f"{head} (error {self.error_before:.4g} -> {self.error_after:.4g}){tail}"
+
+
+def _clean(obj: Any) -> Any:
+    if isinstance(obj, dict):
+        return {str(k): _clean(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_clean(v) for v in obj]
+    if isinstance(obj, (np.floating, float)):
+        return float(obj) if math.isfinite(obj) else None
+    if isinstance(obj, np.integer):
+        return int(obj)
+    if isinstance(obj, np.bool_):
+        return bool(obj)
+    return obj
+
+
+# ------------------------------------------------------------------ residual analysis
+
+def noise_sigma(r: np.ndarray) -> float:
+    """White-noise level of a residual from its first differences (robust: median)."""
+    d = np.diff(r)
+    return float(1.4826 * np.median(np.abs(d - np.median(d))) / math.sqrt(2))
+
+
+def ljung_box(r: np.ndarray, lags: int = 20) -> tuple[float, float]:
+    """(Q, p-value) of the Ljung-Box whiteness test."""
+    from scipy.stats import chi2
+
+    x = r - r.mean()
+    n = x.size
+    den = float(x @ x)
+    if den == 0.0 or n <= lags + 1:
+        return 0.0, 1.0
+    rho = np.array([float(x[:-k] @ x[k:]) / den for k in range(1, lags + 1)])
+    q = n * (n + 2) * float(np.sum(rho**2 / (n - np.arange(1, lags + 1))))
+    return q, float(chi2.sf(q, lags))
+
+
+def _shaft_speed(model, sim) -> dict[str, float]:
+    """Mean speed [rad/s] of every shaft in a simulated run."""
+    out = {}
+    for n in model.shafts:
+        try:
+            out[n] = float(np.mean(sim[f"{n}.w"]))
+        except KeyError:
+            continue
+    return out
+
+
+def analyse(model, record, fit_res, probes: Sequence[str]) -> dict[str, Any]:
+    """Residual statistics, labelled spectral peaks, whiteness and regressor correlations."""
+    from .signal import spectrum
+
+    sim = fit_res.sim
+    speeds = _shaft_speed(model, sim)
+    t = record.t
+    out: dict[str, Any] = {"probes": {}, "shafts": {k: {"speed": v, "frequency": v /
+                                                        (2 * math.pi)}
+                                                    for k, v in speeds.items()}}
+    regressors: dict[str, np.ndarray] = {"time": t - t.mean()}
+    for p in probes:
+        regressors[f"model {p}"] = np.asarray(sim[p])
+    for n in speeds:
+        regressors[f"sign({n}.w)"] = np.sign(np.asarray(sim[f"{n}.w"]))
+    for p in probes:
+        r = np.asarray(fit_res.residuals[p])
+        x = np.asarray(record[p])
+        sigma = noise_sigma(r)
+        f, amp = spectrum(t, r)
+        floor = float(np.median(amp[1:])) if amp.size > 2 else 0.0
+        order = np.argsort(amp)[::-1]
+        peaks = []
+        for k in order[: 200]:
+            if f[k] <= 2 / (t[-1] - t[0]) or amp[k] < 8 * floor:
+                continue
+            if any(abs(f[k] - q["frequency"]) < 3 / (t[-1] - t[0]) for q in peaks):
+                continue
+            label = {}
+            for n, sp in out["shafts"].items():
+                ratio = f[k] / sp["frequency"] if sp["frequency"] > 0 else 0
+                kk = round(ratio)
+                if kk >= 1 and abs(ratio - kk) < ORDER_TOL * kk:
+                    label[n] = kk
+            peaks.append({"frequency": float(f[k]), "amplitude": float(amp[k]),
+                          "orders": label})
+            if len(peaks) == 6:
+                break
+        q, pval = ljung_box(r)
+        corr = {}
+        for name, g in regressors.items():
+            if np.std(g) > 0 and np.std(r) > 0:
+                corr[name] = float(np.corrcoef(g, r)[0, 1])
+        for n in speeds:
+            phi = np.asarray(sim[f"{n}.phi"])
+            for pk in peaks:
+                k = pk["orders"].get(n)
+                if k:
+                    c = np.column_stack([np.sin(k * phi), np.cos(k * phi)])
+                    coef = np.linalg.lstsq(c, r - r.mean(), rcond=None)[0]
+                    corr[f"harmonic {k} of {n}.phi"] = float(
+                        np.sqrt(np.mean((c @ coef) ** 2)) / max(np.std(r), 1e-300))
+        out["probes"][p] = {
+            "rms": float(np.sqrt(np.mean(r**2))),
+            "nrmse": float(np.sqrt(np.mean(r**2)) / max(np.std(x), 1e-300)),
+            "noise_sigma": sigma, "peaks": peaks,
+            "whiteness": {"ljung_box_q": q, "p_value": pval, "white": pval > 1e-3},
+            "correlation": corr,
+        }
+    return out
+
+
+def _orders(analysis: Mapping[str, Any]) -> dict[str, list[int]]:
+    found: dict[str, list[int]] = {}
+    for pr in analysis["probes"].values():
+        for pk in pr["peaks"]:
+            for n, k in pk["orders"].items():
+                found.setdefault(n, [])
+                if k not in found[n]:
+                    found[n].append(k)
+    return found
+
+
+# --------------------------------------------------------------------- the engine
+
+@dataclass
+class _State:
+    """The model as it stands in the greedy loop."""
+
+    raw: Any
+    model: Any
+    free: list[str]
+    params: dict[str, float]
+    fit: Any
+    bounds: dict[str, tuple[float, float]]
+
+
+def _compile(raw):
+    from .model import compile as compile_model
+    from .netlist import build
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return compile_model(build(raw))
+
+
+def _normalised(record, probes, sims_or_residuals, spread) -> np.ndarray:
+    return np.concatenate([np.asarray(sims_or_residuals[p]) / s
+                           for p, s in zip(probes, spread, strict=True)])
+
+
+def _sse(fit_res, probes, spread) -> float:
+    e = _normalised(None, probes, fit_res.residuals, spread)
+    return float(e @ e)
+
+
+def _simulate(model, record, params, rtol):
+    res = model.simulate(stop=float(record.t[-1]), params=params, t_eval=record.t,
+                         rtol=rtol, atol=model.netlist.analysis.atol)
+    if not res.success or res.t.size != record.t.size:
+        return None
+    return res
+
+
+def _screen(cand, state: _State, record, probes, spread, e0: np.ndarray, rtol: float
+            ) -> dict[str, Any] | None:
+    """Score test of one candidate: how much of the residual its sensitivity explains."""
+    model = _compile(cand.apply(state.raw))
+    base = {**state.params, **{k: v[0] for k, v in cand.free.items()}}
+    y0 = _simulate(model, record, base, rtol)
+    if y0 is None:
+        return None
+    if cand.grid:  # invisible to a linearisation at null: try a few values instead
+        first = next(iter(cand.free))
+        scale = max(float(np.max(np.abs(y0[f"{cand.target}.i"]))), 1e-9) \
+            if f"{cand.target}.i" in y0.names else 1.0
+        best = None
+        for g in cand.grid:
+            trial = {**base, first: g * scale}
+            y = _simulate(model, record, trial, rtol)
+            if y is None:
+                continue
+            e = e0 - _normalised(record, probes, {p: y[p] - y0[p] for p in probes}, spread)
+            gain = float(e0 @ e0 - e @ e)
+            if best is None or gain > best["gain"]:
+                best = {"gain": gain, "start": {first: g * scale}, "S": None}
+        return best and {**best, "model": model}
+    cols = []
+    for name in cand.free:
+        h = cand.steps.get(name, 1e-3)
+        for _ in range(3):
+            y = _simulate(model, record, {**base, name: base[name] + h}, rtol)
+            if y is None:
+                return None
+            col = _normalised(record, probes, {p: y[p] - y0[p] for p in probes}, spread) / h
+            size = float(np.linalg.norm(col * h))
+            if size < 1e-4 * math.sqrt(col.size) * 1e-3:
+                h *= 100  # invisible above the solver's noise: a bigger step
+            elif size > 0.3 * math.sqrt(col.size):
+                h /= 30  # far from linear: a smaller one
+            else:
+                break
+        cols.append(col)
+    S = np.column_stack(cols)
+    coef, *_ = np.linalg.lstsq(S, e0, rcond=None)
+    gain = float(e0 @ (S @ coef))
+    start = {n: base[n] + float(c) for n, c in zip(cand.free, coef, strict=True)}
+    return {"gain": gain, "start": start, "S": S, "model": model}
+
+
+def diagnose(netlist, record, free: Sequence[str] = (), *, probes: Sequence[str] | None = None,
+             max_effects: int = MAX_EFFECTS, screen_top: int = SCREEN_TOP,
+             rtol: float = 1e-8, params: Mapping[str, float] | None = None,
+             progress=None) -> Diagnosis:
+    """Find what the netlist lacks to explain ``record`` (see the module docstring).
+
+    Parameters
+    ----------
+    netlist : a Netlist (``circuitsim.load``) or a path.
+    record : a ``data.Record`` (time series).
+    free : declared free parameters, fitted first and kept free throughout.
+    probes : probe columns to use (default: every probe the record has).
+    """
+    import time
+
+    from . import effects
+    from .fit import fit_record
+    from .model import compile as compile_model
+    from .netlist import Netlist, load
+
+    say = progress or (lambda msg: None)
+    clock = {"start": time.perf_counter()}
+    net = netlist if isinstance(netlist, Netlist) else load(netlist)
+    if net.raw is None:
+        raise DiagnosisError("this netlist has no raw form to patch; load it from a file")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        model = compile_model(net)
+    probes = list(probes or [p for p in model.probe_names if p in record.names])
+    if not probes:
+        raise DiagnosisError(f"the record {record.path} has no column named like a probe of "
+                             f"the netlist ({', '.join(model.probe_names)})")
+    spread = np.array([max(float(np.std(record[p])), 1e-300) for p in probes])
+    n_samples = record.t.size * len(probes)
+
+    def refit(model_, free_, params_, bounds_):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            return fit_record(model_, record, free_, params=params_, bounds=bounds_ or None,
+                              probes=probes, rtol=rtol)
+
+    fit0 = refit(model, list(free), dict(params or {}), {})
+    clock["fit"] = time.perf_counter() - clock["start"]
+    state = _State(net.raw, model, list(free), dict(fit0.params), fit0, {})
+    analysis0 = analyse(model, record, fit0, probes)
+    sigma2 = sum(analysis0["probes"][p]["noise_sigma"] ** 2 / s**2 * record.t.size
+                 for p, s in zip(probes, spread, strict=True))
+    accepted: list[Accepted] = []
+    rejected: list[dict[str, Any]] = []
+    indistinct: list[str] = []
+    tried: set[str] = set()
+    analysis = analysis0
+    screen_time = refit_time = 0.0
+    while len(accepted) < max_effects:
+        sse0 = _sse(state.fit, probes, spread)
+        excess = max(sse0 - sigma2, 0.0)
+        e0 = _normalised(record, probes, state.fit.residuals, spread)  # measured - model
+        t0 = time.perf_counter()
+        cands = [c for c in effects.candidates(load_raw_netlist(state.raw),
+                                               _orders(analysis)) if c.key not in tried]
+        scored = []
+        for c in cands:
+            say(f"screening {c.key}")
+            s = _screen(c, state, record, probes, spread, e0, rtol)
+            if s is not None and s["gain"] > 0:
+                scored.append((c, s))
+        scored.sort(key=lambda cs: -cs[1]["gain"])
+        screen_time += time.perf_counter() - t0
+        if not scored:
+            break
+        t0 = time.perf_counter()
+        best = None
+        results = []
+        for c, s in scored[:screen_top]:
+            say(f"refitting {c.key}")
+            free_c = [*state.free, *c.free]
+            params_c = {**state.params, **s["start"]}
+            bounds_c = dict(state.bounds)
+            for n, (_, lo, hi) in c.free.items():
+                v = params_c[n]
+                bounds_c[n] = (min(lo, v), max(hi, v))
+            try:
+                f = refit(s["model"], free_c, params_c, bounds_c)
+            except CircuitsimError as exc:
+                rejected.append({"effect": c.effect, "target": c.target,
+                                 "reason": f"refit failed: {exc.bare}"})
+                continue
+            sse = _sse(f, probes, spread)
+            k = len(c.free)
+            dbic = n_samples * math.log(max(sse, 1e-300) / sse0) + k * math.log(n_samples)
+            entry = (dbic, c, s, f, sse)
+            results.append(entry)
+            if best is None or dbic < best[0]:
+                best = entry
+        refit_time += time.perf_counter() - t0
+        if best is None:
+            break
+        dbic, c, s, f, sse = best
+        explained = (sse0 - sse) / excess if excess > 0 else 0.0
+        tried.add(c.key)
+        if not (dbic < -BIC_MARGIN and explained >= EXCESS_FRACTION):
+            rejected.append({"effect": c.effect, "target": c.target, "delta_bic": dbic,
+                             "explained_fraction": explained,
+                             "reason": "not significant" if dbic >= -BIC_MARGIN else
+                             "explains too little of the residual above the noise"})
+            break
+        # which other candidates explain the same thing: a refit nearly as good, or a
+        # sensitivity of the same shape
+        for dbic2, c2, _, _, _ in results:
+            if c2 is not c and dbic2 - dbic < BIC_MARGIN:
+                indistinct.append(f"{c.effect} on {c.target} and {c2.effect} on {c2.target} "
+                                  f"explain this record almost equally well (BIC "
+                                  f"{dbic:.1f} vs {dbic2:.1f}): the data cannot tell them "
+                                  f"apart")
+        raw = c.apply(state.raw)
+        state = _State(raw, s["model"], [*state.free, *c.free], dict(f.params), f,
+                       {**state.bounds, **{n: (lo, hi) for n, (_, lo, hi) in c.free.items()}})
+        analysis = analyse(state.model, record, f, probes)
+        peak = next((pk for pr in analysis0["probes"].values() for pk in pr["peaks"]
+                     if c.fixed.get("order") in pk["orders"].values()), None)
+        accepted.append(Accepted(
+            c.effect, c.target,
+            {**{n: f.estimate[n] for n in c.free}, **({"order": c.fixed["order"]}
+                                                      if "order" in c.fixed else {})},
+            {n: (f.stderr[n] if math.isfinite(f.stderr[n]) else None) for n in c.free},
+            f.error,
+            {"what": c.what, "delta_bic": dbic, "explained_fraction": explained,
+             "screen_gain": s["gain"], "spectral_peak": peak,
+             "sse_before": sse0, "sse_after": sse}))
+        say(f"accepted {c.key}: error {f.error:.4g}")
+    final = state.fit
+    analysis_after = analysis
+    sse_end = _sse(final, probes, spread)
+    left = (sse_end - sigma2) / sse_end if sse_end > 0 else 0.0
+    white = all(pr["whiteness"]["white"] for pr in analysis_after["probes"].values())
+    peaks = [pk for pr in analysis_after["probes"].values() for pk in pr["peaks"]]
+    remaining = {"structure": bool(left > 0.2 or not white),
+                 "above_noise_fraction": left, "white": white,
+                 "peaks": peaks[:6],
+                 "note": (f"{left:.0%} of the residual is above the noise floor" +
+                          ("" if white else ", the residual is not white") +
+                          ("; peaks at " + ", ".join(f"{pk['frequency']:.4g} Hz"
+                                                     for pk in peaks[:3]) if peaks else ""))}
+    clock_total = time.perf_counter() - clock["start"]
+    raw = state.raw.copy()
+    loc_free = {n: v for n, v in final.params.items()}
+    for n, v in loc_free.items():
+        if n in raw.params:
+            raw.params[n] = (repr(float(v)), raw.params[n][1])
+    return Diagnosis(fit0.error, final.error, dict(fit0.errors), dict(final.errors), accepted,
+                     indistinct, remaining, analysis0, analysis_after, raw, fit0, final, record,
+                     {"fit_declared": clock["fit"], "screen": screen_time, "refit": refit_time,
+                      "total": clock_total}, rejected)
+
+
+def load_raw_netlist(raw):
+    """Type a raw netlist (for candidate generation on the current, patched netlist)."""
+    from .netlist import build
+
+    return build(raw)
+
+
+# ---------------------------------------------------------------------------- output
+
+def _figures(diag: Diagnosis, probes: Sequence[str]) -> dict[str, bytes]:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from .signal import spectrum
+
+    rec = diag.record
+    t = rec.t
+    out = {}
+    fig, axes = plt.subplots(len(probes), 1, figsize=(8, 2.6 * len(probes)), squeeze=False)
+    zoom = t >= t[-1] - 0.1 * (t[-1] - t[0])
+    for ax, p in zip(axes[:, 0], probes, strict=True):
+        ax.plot(t[zoom], rec[p][zoom], "k.", ms=2, label="measured")
+        ax.plot(t[zoom], diag.fit_before.sim[p][zoom], lw=1, label="model before")
+        ax.plot(t[zoom], diag.fit_after.sim[p][zoom], lw=1, label="model after")
+        ax.set_ylabel(p)
+        ax.legend(fontsize=7)
+        ax.grid(alpha=0.3)
+    axes[-1, 0].set_xlabel("time [s]")
+    fig.tight_layout()
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=100)
+    plt.close(fig)
+    out["waveforms"] = buf.getvalue()
+    fig, axes = plt.subplots(len(probes), 1, figsize=(8, 2.6 * len(probes)), squeeze=False)
+    shafts = diag.analysis_before.get("shafts", {})
+    for ax, p in zip(axes[:, 0], probes, strict=True):
+        for label, fr in (("before", diag.fit_before), ("after", diag.fit_after)):
+            f, a = spectrum(t, np.asarray(fr.residuals[p]))
+            ax.semilogy(f[1:], a[1:] + 1e-300, lw=0.8, label=f"residual {label}")
+        for pk in diag.analysis_before["probes"][p]["peaks"]:
+            lab = ", ".join(f"{k}x {n}" for n, k in pk["orders"].items())
+            if lab:
+                ax.annotate(lab, (pk["frequency"], pk["amplitude"]), fontsize=7)
+        ax.set_ylabel(f"{p} residual")
+        ax.grid(alpha=0.3, which="both")
+        ax.legend(fontsize=7)
+        if shafts:
+            ax.set_title("orders of " + ", ".join(f"{n} ({v['frequency']:.4g} Hz)"
+                                                  for n, v in shafts.items()), fontsize=8)
+    axes[-1, 0].set_xlabel("frequency [Hz]")
+    fig.tight_layout()
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=100)
+    plt.close(fig)
+    out["spectra"] = buf.getvalue()
+    return out
+
+
+def write_html(diag: Diagnosis, path: str, title: str = "circuitsim diagnosis") -> None:
+    probes = list(diag.errors_before)
+    figs = _figures(diag, probes)
+    rows = "".join(
+        f"<tr><td>{i + 1}</td><td>{html.escape(a.effect)}</td><td>{html.escape(a.target)}</td>"
+        f"<td>{html.escape(', '.join(f'{k} = {v:.5g}' for k, v in a.parameters.items()))}</td>"
+        f"<td>{html.escape(', '.join(f'{k}: {v:.2g}' if v is not None else f'{k}: n/a' for k, v in a.stderr.items()))}</td>"
+        f"<td>{a.error_after:.4g}</td><td>{a.evidence['delta_bic']:.1f}</td></tr>"
+        for i, a in enumerate(diag.effects))
+    body = f"""<!doctype html><html><head><meta charset="utf-8"><title>{html.escape(title)}</title>
+<style>body{{font-family:sans-serif;max-width:60em;margin:auto}}td,th{{padding:2px 8px}}</style>
+</head><body><h1>{html.escape(title)}</h1>
+<p>{html.escape(diag.summary())}</p>
+<p>Error (RMS over probes of NRMSE): before {diag.error_before:.5g}, after {diag.error_after:.5g}.</p>
+<table border="1"><tr><th>#</th><th>effect</th><th>target</th><th>parameters</th><th>stderr</th>
+<th>error after</th><th>&Delta;BIC</th></tr>{rows}</table>
+<p>{'<br>'.join(html.escape(s) for s in diag.indistinct)}</p>
+<h2>Measured and model</h2><img src="data:image/png;base64,{base64.b64encode(figs['waveforms']).decode()}">
+<h2>Residual spectra</h2><img src="data:image/png;base64,{base64.b64encode(figs['spectra']).decode()}">
+</body></html>"""
+    _atomic_text(path, body)
+
+
+def _atomic_text(path: str, text: str) -> None:
+    d = os.path.dirname(os.path.abspath(path)) or "."
+    fd, tmp = tempfile.mkstemp(dir=d, prefix=".circuitsim-")
+    with os.fdopen(fd, "w", encoding="utf-8") as fh:
+        fh.write(text)
+    os.replace(tmp, path)
+
+
+def add_cli(sub) -> None:
+    d = sub.add_parser("diagnose", help="trace the residual against measured data to a "
+                       "physical effect the model lacks")
+    d.add_argument("netlist")
+    d.add_argument("data", help="CSV record: time + one column per probe [SI]")
+    d.add_argument("--free", default="", help="declared free parameters, comma-separated")
+    d.add_argument("--probes", help="probe columns to use, comma-separated (default: all)")
+    d.add_argument("--report", help="diag.json")
+    d.add_argument("--html", help="diag.html with plots")
+    d.add_argument("--write-netlist", help="the netlist with the effects added")
+    d.add_argument("--max-effects", type=int, default=MAX_EFFECTS)
+    d.add_argument("--quiet", action="store_true")
+    d.set_defaults(func=cmd_diagnose)
+
+
+def cmd_diagnose(args) -> int:
+    from .data import load_record
+    from .model import compile as compile_model
+    from .netlist import load
+
+    net = load(args.netlist)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        model = compile_model(net)
+    inputs = [t.label.split(":")[-1] for c in net.components for t in c.tables]
+    record = load_record(args.data, model.probe_names, inputs=inputs)
+    free = [s.strip() for s in args.free.split(",") if s.strip()]
+    probes = [s.strip() for s in args.probes.split(",")] if args.probes else None
+    say = None if args.quiet else (lambda m: print(f"  {m}", file=sys.stderr))
+    diag = diagnose(net, record, free, probes=probes, max_effects=args.max_effects,
+                    progress=say)
+    print(diag.summary())
+    for a in diag.effects:
+        print(f"  + {a.effect} on {a.target}: " + ", ".join(
+            f"{k} = {v:.5g}" + (f" +- {a.stderr[k]:.2g}" if a.stderr.get(k) else "")
+            for k, v in a.parameters.items()) + f"  (error {a.error_after:.4g})")
+    for s in diag.indistinct:
+        print(f"  ! {s}")
+    if args.report:
+        _atomic_text(args.report, json.dumps(diag.as_dict(), indent=1))
+        print(f"report: {args.report}")
+    if args.html:
+        write_html(diag, args.html, f"diagnosis of {net.title}")
+        print(f"html: {args.html}")
+    if args.write_netlist:
+        header = (f"{net.title}, with the effects circuitsim diagnose found in {args.data}:\n" +
+                  "\n".join(f"- {a.effect} on {a.target}: {a.evidence['what']}"
+                            for a in diag.effects) +
+                  f"\nerror {diag.error_before:.4g} -> {diag.error_after:.4g}")
+        diag.raw.dump(args.write_netlist, header)
+        print(f"netlist: {args.write_netlist}")
+    return 0

@@ -1,0 +1,882 @@
+"""Fit free netlist parameters to measured data by nonlinear least squares.
+
+Two kinds of measurement (``circuitsim.data``):
+
+- **features** (a steady value, a harmonic's amplitude or frequency) are compared with the
+  analyses of the compiled model: a steady mean with the operating point of the averaged model
+  (a turning machine's steady state), a harmonic with the small-signal response to the
+  circuit's own shaft-angle harmonic (``analyses.harmonic_response``). The small-signal
+  response is the default because it is a smooth, noise-free function of the parameters (a
+  Newton solve and a linear solve, ~10 ms), so the finite-difference Jacobian of the fit is
+  clean; the exact periodic steady state (``harmonic='pss'``, shooting) differs from it by
+  second-order terms only (4e-6 relative for the Kim & Kim ripple) and costs ~30x more.
+- a **record** (time series) is compared sample by sample with a transient simulated on the
+  record's time grid (output error), each probe normalised by its measured spread.
+
+A ripple locked to the rotor angle slides out of phase as soon as the modelled speed is off by
+a fraction of a percent, so the raw time-domain residual of a rotating machine is dominated by
+phase misalignment and its least-squares cost has a local minimum every time the accumulated
+phase error passes a multiple of 2 pi. The record fit is therefore **staged**: stage 1 fits
+phase-insensitive slow features -- Hann-weighted means and ripple RMS over overlapping windows
+at least ten ripple periods long (the window's side lobes suppress a misaligned ripple by
+~60 dB) -- and stage 2 refines on the full waveform starting from there, inside the basin of
+the true minimum.
+
+Parameters move in a scaled space: a parameter with a non-zero start value moves as
+``start * exp(z)`` (its sign is kept, positive parameters stay positive, and z is a relative
+change), a zero one as ``z * scale``. Standard errors and correlations come from the Jacobian
+at the optimum, scaled by the residual variance (per probe for a record); when the
+information is near-singular (condition number, or |correlation| > 0.99) the parameters
+involved are flagged and no standard error is given for them.
+
+Top-level imports stay light (numpy only): the CLI imports this module on every call.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import sys
+import tempfile
+import warnings
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from .data import DataError, FeatureSet, Record
+from .errors import CircuitsimError, ParameterError, SolverError
+
+# |correlation| above which two estimates are reported as not told apart
+CORRELATION_LIMIT = 0.99
+# condition number of the column-normalised information matrix above which the fit is
+# reported as near-singular (a pair at |corr| = 0.99 gives ~200, so this catches groups of
+# three or more parameters whose pairwise correlations all look harmless)
+CONDITION_LIMIT = 1e6
+# default box for a log-scaled parameter: a factor 1e4 either way of its start value
+LOG_SPAN = math.log(1e4)
+# penalty per residual when a simulation fails inside the fit (a normalised residual of a
+# sensible model is O(1)): the trust region shrinks away from the failing parameters
+FAILED_PENALTY = 1e2
+# smoothing windows of stage 1 are at least this many ripple periods long
+WINDOW_PERIODS = 10
+
+
+class FitError(CircuitsimError):
+    """The fit is ill-posed as asked (no data for it, bad bounds, nothing to compare)."""
+
+
+class FitWarning(UserWarning):
+    """Parameters that the data cannot tell apart; a fit that did not converge."""
+
+
+# ----------------------------------------------------------------------------- results
+
+@dataclass(frozen=True)
+class Stage:
+    """One least-squares stage: what it compared, where it ended, its cost ½Σr²."""
+
+    name: str
+    estimate: dict[str, float]
+    cost: float
+    nfev: int
+    message: str
+
+
+@dataclass(frozen=True)
+class FitResult:
+    """Estimates of the free parameters [SI] and what the data say about them.
+
+    Attributes
+    ----------
+    free : the free parameters, in order.
+    start, estimate : their start values and estimates [SI].
+    stderr : standard errors [SI]; NaN where the data cannot tell a parameter apart from
+        others, or where the fit is exact and the features give no sigma.
+    correlation : (n, n) correlation matrix of the estimates.
+    condition : condition number of the column-normalised information matrix JᵀJ.
+    identifiable : False when near-singular (see ``warnings``).
+    kind : 'record' or 'features'.
+    residuals : measured - model; per probe on the record's time grid (record), or per
+        feature label (features).
+    errors : per probe, NRMSE = RMS(residual) / RMS(measured - its mean) (record); per
+        feature, the residual in sigmas (or relative to the value when no sigma is given).
+    params : every override of the fitted model (fixed ones and the estimates) [SI]:
+        ``model.simulate(params=fit.params)`` reproduces the fit.
+    sim : the fitted transient on the record's grid (record), else None.
+    predicted : model values of the features at the estimate (features), else empty.
+    stages : the least-squares stages run, in order.
+    """
+
+    free: tuple[str, ...]
+    start: dict[str, float]
+    estimate: dict[str, float]
+    stderr: dict[str, float]
+    correlation: np.ndarray
+    condition: float
+    identifiable: bool
+    warnings: tuple[str, ...]
+    kind: str
+    residuals: dict[str, Any]
+    errors: dict[str, float]
+    params: dict[str, float]
+    success: bool
+    message: str
+    nfev: int
+    stages: tuple[Stage, ...] = ()
+    sim: Any = field(default=None, repr=False)
+    predicted: dict[str, float] = field(default_factory=dict)
+    measured: dict[str, float] = field(default_factory=dict)
+    sigma: dict[str, float | None] = field(default_factory=dict)
+    units: dict[str, str] = field(default_factory=dict)
+
+    @property
+    def error(self) -> float:
+        """Root-mean-square over probes of each probe's NRMSE (record), or over features of
+        the normalised residuals (features)."""
+        v = np.array(list(self.errors.values()), float)
+        return float(np.sqrt(np.mean(v**2))) if v.size else 0.0
+
+    def as_dict(self) -> dict:
+        """JSON-ready report (NaN becomes null)."""
+
+        def num(x: float) -> float | None:
+            return float(x) if x is not None and math.isfinite(x) else None
+
+        out: dict[str, Any] = {
+            "kind": self.kind, "success": self.success, "message": self.message,
+            "free": list(self.free),
+            "parameters": {n: {"start": num(self.start[n]), "estimate": num(self.estimate[n]),
+                               "stderr": num(self.stderr[n]), "unit": self.units.get(n, "")}
+                           for n in self.free},
+            "correlation": [[num(c) for c in row] for row in self.correlation.tolist()],
+            "condition_number": num(self.condition),
+            "identifiable": self.identifiable,
+            "warnings": list(self.warnings),
+            "error": num(self.error),
+            "errors": {k: num(v) for k, v in self.errors.items()},
+            "nfev": self.nfev,
+            "stages": [{"name": s.name, "estimate": s.estimate, "cost": num(s.cost),
+                        "nfev": s.nfev, "message": s.message} for s in self.stages],
+            "params": self.params,
+        }
+        if self.kind == "features":
+            out["features"] = [{"feature": k, "measured": self.measured[k],
+                                "model": self.predicted[k], "sigma": self.sigma[k],
+                                "residual": num(self.residuals[k])} for k in self.predicted]
+        else:
+            out["rms_residual"] = {k: float(np.sqrt(np.mean(np.asarray(v) ** 2)))
+                                   for k, v in self.residuals.items()}
+        return out
+
+
+# ----------------------------------------------------------------- parameter space
+
+@dataclass(frozen=True)
+class _Space:
+    """Free parameters in the scaled coordinates z (see the module docstring)."""
+
+    names: tuple[str, ...]
+    start: np.ndarray
+    log: np.ndarray
+    scale: np.ndarray
+    lo: np.ndarray
+    hi: np.ndarray
+
+    def theta(self, z: np.ndarray) -> np.ndarray:
+        return np.where(self.log, self.start * np.exp(np.where(self.log, z, 0.0)),
+                        self.start + self.scale * z)
+
+    def dtheta(self, z: np.ndarray) -> np.ndarray:
+        return np.where(self.log, self.theta(z), self.scale)
+
+    def z_of(self, theta: np.ndarray) -> np.ndarray:
+        with np.errstate(all="ignore"):
+            return np.where(self.log, np.log(np.where(self.log, theta / self.start, 1.0)),
+                            (theta - self.start) / self.scale)
+
+
+def _space(model, free: Sequence[str], params: Mapping[str, float],
+           bounds: Mapping[str, tuple[float, float]] | None) -> _Space:
+    from .model import _near
+
+    net = model.netlist
+    comp = model.meta["params"]
+    for name in free:
+        if name not in net.parameters and name not in comp:
+            raise ParameterError(f"--free {name}: no such parameter"
+                                 f"{_near(name, [*net.parameters, *comp])}; free a netlist "
+                                 f"parameter (La) or a component parameter (La.L); "
+                                 f"`circuitsim check NETLIST` lists them")
+    if len(set(free)) != len(free):
+        raise FitError("a parameter is listed twice in --free")
+    bounds = dict(bounds or {})
+    for b in bounds:
+        if b not in free:
+            raise FitError(f"bounds given for '{b}', which is not free")
+    glob = net.global_values({k: v for k, v in params.items() if k in net.parameters})
+    comp_vals = model.param_values(params)
+    start = np.array([glob[n] if n in net.parameters else comp_vals[n] for n in free], float)
+    log = start != 0.0
+    scale = np.ones(len(free))
+    lo = np.where(log, -LOG_SPAN, -np.inf)
+    hi = np.where(log, LOG_SPAN, np.inf)
+    for k, n in enumerate(free):
+        if n not in bounds:
+            continue
+        a, b = sorted(float(v) for v in bounds[n])
+        if not a <= start[k] <= b:
+            raise FitError(f"the start value of {n} ({start[k]:g}) is outside its bounds "
+                           f"[{a:g}, {b:g}]; --set {n}=... inside them")
+        if log[k]:
+            if a * start[k] <= 0 or b * start[k] <= 0:
+                # a bound across zero: the sign may change, so move linearly
+                log[k] = False
+                scale[k] = abs(start[k])
+                lo[k], hi[k] = (a - start[k]) / scale[k], (b - start[k]) / scale[k]
+            else:
+                zs = sorted((math.log(a / start[k]), math.log(b / start[k])))
+                lo[k], hi[k] = zs
+        else:
+            scale[k] = (b - a) / 10 if math.isfinite(b - a) and b > a else 1.0
+            lo[k], hi[k] = (a - start[k]) / scale[k], (b - start[k]) / scale[k]
+    # least_squares needs a strictly feasible start
+    lo = np.minimum(lo, -1e-12)
+    hi = np.maximum(hi, 1e-12)
+    return _Space(tuple(free), start, log, scale, lo, hi)
+
+
+# ------------------------------------------------------------------- least squares core
+
+def _least_squares(fun: Callable[[np.ndarray], np.ndarray], space: _Space, z0: np.ndarray,
+                   diff_step: float, max_nfev: int):
+    """scipy's trust-region least squares in z, with forward differences of *absolute* step
+    ``diff_step`` in z (a relative change of a log-scaled parameter).
+
+    scipy's own ``diff_step`` is relative to |z|, which near the start (z = 0) shrinks the
+    step to round-off size: the simulation's own error (~1e-7 of a normalised residual at
+    rtol 1e-8) then swamps the difference and the trust region collapses.
+    """
+    from scipy.optimize import least_squares
+
+    last: dict[str, np.ndarray] = {}
+
+    def f(z: np.ndarray) -> np.ndarray:
+        r = fun(z)
+        last["z"], last["r"] = z.copy(), r
+        return r
+
+    def jac(z: np.ndarray) -> np.ndarray:
+        r0 = last["r"] if "z" in last and np.array_equal(last["z"], z) else fun(z)
+        cols = []
+        for k in range(z.size):
+            h = diff_step if z[k] + diff_step <= space.hi[k] else -diff_step
+            zz = z.copy()
+            zz[k] += h
+            cols.append((fun(zz) - r0) / h)
+        return np.column_stack(cols)
+
+    z0 = np.clip(z0, space.lo + 1e-12, space.hi - 1e-12)
+    return least_squares(f, z0, jac=jac, bounds=(space.lo, space.hi), method="trf",
+                         x_scale=1.0, xtol=1e-8, ftol=1e-8, gtol=1e-10, max_nfev=max_nfev)
+
+
+def _jacobian(fun: Callable[[np.ndarray], np.ndarray], z: np.ndarray, h: float) -> np.ndarray:
+    """Central differences in z (z is a relative change for log-scaled parameters)."""
+    cols = []
+    for k in range(z.size):
+        zp, zm = z.copy(), z.copy()
+        zp[k] += h
+        zm[k] -= h
+        cols.append((fun(zp) - fun(zm)) / (2 * h))
+    return np.column_stack(cols) if cols else np.zeros((fun(z).size, 0))
+
+
+@dataclass(frozen=True)
+class _Uncertainty:
+    stderr: np.ndarray
+    correlation: np.ndarray
+    condition: float
+    flagged: tuple[int, ...]
+    warnings: tuple[str, ...]
+
+
+def _uncertainty(J: np.ndarray, r: np.ndarray, space: _Space, z: np.ndarray,
+                 groups: list[np.ndarray] | None, absolute: bool) -> _Uncertainty:
+    """Covariance of the estimates from the Jacobian J = dr/dz at the optimum.
+
+    ``groups`` (record fits): index sets of the residual, one per probe, each with its own
+    noise variance estimated from its residual; the covariance is the sandwich
+    A⁻¹ (Σ_p σ_p² J_pᵀJ_p) A⁻¹ with A = JᵀJ, which is right whatever weights the fit used.
+    ``absolute``: r is already in units of its standard deviation (features with sigma).
+    Otherwise the residual variance SSR / (m - n) scales A⁻¹.
+    """
+    m, n = J.shape
+    names = space.names
+    if n == 0:
+        return _Uncertainty(np.zeros(0), np.zeros((0, 0)), 1.0, (), ())
+    norms = np.linalg.norm(J, axis=0)
+    dead = norms == 0
+    cn = np.where(dead, 1.0, norms)
+    Jn = J / cn
+    A = Jn.T @ Jn
+    lam, V = np.linalg.eigh(A)
+    lam_max = max(float(lam.max()), 1e-300)
+    cond = lam_max / max(float(lam.min()), 1e-300 * lam_max)
+    # a floored inverse keeps the near-null direction huge but finite, so the correlation
+    # of two interchangeable parameters comes out as the trade-off it is (about -1)
+    Ainv = (V / np.maximum(lam, 1e-14 * lam_max)) @ V.T
+    msgs: list[str] = []
+    dof = m - n
+    if groups is not None:
+        B = np.zeros((n, n))
+        for g in groups:
+            mg = g.size
+            s2 = float(r[g] @ r[g]) / max(mg - n * mg / m, 1.0)
+            B += s2 * (Jn[g].T @ Jn[g])
+        # the sandwich squares the floored inverse and would wipe out a null direction;
+        # there a scalar noise level keeps the trade-off visible
+        if lam.min() > 1e-12 * lam_max:
+            cov_n = Ainv @ B @ Ainv
+        else:
+            cov_n = Ainv * float(np.trace(B) / np.trace(A))
+    elif absolute:
+        cov_n = Ainv
+    elif dof > 0:
+        cov_n = Ainv * float(r @ r) / dof
+    else:
+        cov_n = Ainv * np.nan
+        msgs.append(f"{m} measured values for {n} free parameters and no sigma given: the "
+                    f"fit is exact and the data say nothing about its uncertainty. Give each "
+                    f"feature a 'sigma', or measure more")
+    cov_z = cov_n / np.outer(cn, cn)
+    d = space.dtheta(z)
+    cov = cov_z * np.outer(d, d)
+    sd = np.sqrt(np.abs(np.diag(cov_n)))
+    with np.errstate(all="ignore"):
+        corr = cov_n / np.outer(sd, sd) if np.all(np.isfinite(sd)) else \
+            Ainv / np.sqrt(np.outer(np.diag(Ainv), np.diag(Ainv)))
+    corr = np.clip(np.nan_to_num(corr), -1.0, 1.0)
+    np.fill_diagonal(corr, 1.0)
+    stderr = np.sqrt(np.abs(np.diag(cov)))
+    flagged: set[int] = set()
+    for k in np.flatnonzero(dead):
+        flagged.add(int(k))
+        msgs.append(f"{names[k]} has no effect on the measured values: it cannot be "
+                    f"estimated from these data. Fix it (do not free it), or measure a probe "
+                    f"it acts on")
+    pairs = [(a, b) for a in range(n) for b in range(a + 1, n)
+             if abs(corr[a, b]) > CORRELATION_LIMIT and not (dead[a] or dead[b])]
+    weak = [V[:, k] for k in range(n) if lam[k] < lam_max / CONDITION_LIMIT]
+    groups_bad: list[set[int]] = [{a, b} for a, b in pairs]
+    for v in weak:
+        g = {int(j) for j in np.flatnonzero(np.abs(v) > 0.1) if not dead[j]}
+        if len(g) > 1:
+            groups_bad.append(g)
+    merged: list[set[int]] = []
+    for g in groups_bad:
+        for h in [h for h in merged if h & g]:
+            merged.remove(h)
+            g = g | h
+        merged.append(g)
+    for g in merged:
+        flagged |= g
+        members = sorted(g)
+        worst = max(((a, b) for a in members for b in members if a < b),
+                    key=lambda ab: abs(corr[ab]))
+        msgs.append(f"{', '.join(names[j] for j in members)} cannot be told apart from these "
+                    f"data: only a combination of them is determined (correlation "
+                    f"{names[worst[0]]}-{names[worst[1]]} = {corr[worst]:+.4f}, information "
+                    f"condition number {cond:.3g}); their standard errors would be "
+                    f"meaningless. Fix all but one of them (--set), or measure a probe that "
+                    f"separates them")
+    stderr = np.where(np.isin(np.arange(n), sorted(flagged)), np.nan, stderr)
+    return _Uncertainty(stderr, corr, float(cond), tuple(sorted(flagged)), tuple(msgs))
+
+
+# ------------------------------------------------------------------------- features
+
+def predict_features(model, features: FeatureSet, params: Mapping[str, float] | None = None,
+                     harmonic: str = "small-signal") -> np.ndarray:
+    """Model values of ``features`` [SI] with parameter overrides ``params``.
+
+    A ``mean`` is the probe at the operating point of the averaged model (a turning machine's
+    steady state); a harmonic ``amplitude``/``frequency`` is the small-signal response to the
+    circuit's own shaft-angle harmonic of that order (``harmonic='small-signal'``) or the
+    order-th harmonic of the exact periodic steady state (``harmonic='pss'``).
+    """
+    from .analyses import (
+        harmonic_response,
+        linearize,
+        periodic_steady_state,
+        probe_values,
+    )
+
+    if harmonic not in ("small-signal", "pss"):
+        raise FitError(f"harmonic must be 'small-signal' or 'pss', not {harmonic!r}")
+    params = dict(params or {})
+    wants_harmonic = any(f.quantity != "mean" for f in features.features)
+    if wants_harmonic and not model.shafts:
+        raise DataError("a harmonic feature needs a turning shaft in the netlist (its order "
+                        "counts per revolution)", features.features[0].loc)
+    lin = linearize(model, params)
+    means: dict[str, float] | None = None
+    pss: dict[float, Any] = {}
+    out = []
+    for f in features.features:
+        if f.quantity == "mean":
+            if means is None:
+                means = probe_values(model, lin.op, params)
+            out.append(means[f.probe])
+            continue
+        if harmonic == "small-signal":
+            try:
+                h = harmonic_response(model, f.order, f.probe, params, lin=lin)
+            except ValueError as exc:
+                raise DataError(f"feature {f.label}: {exc}", f.loc) from None
+            out.append(h.amplitude if f.quantity == "amplitude" else h.frequency)
+        else:
+            if f.order not in pss:
+                pss[f.order] = periodic_steady_state(model, params, order=f.order)
+            freq, amp, _ = pss[f.order].harmonic(f.probe, 1)
+            out.append(amp if f.quantity == "amplitude" else freq)
+    return np.array(out, float)
+
+
+def fit_features(model, features: FeatureSet, free: Sequence[str], *,
+                 params: Mapping[str, float] | None = None,
+                 bounds: Mapping[str, tuple[float, float]] | None = None,
+                 harmonic: str = "small-signal", max_nfev: int = 200) -> FitResult:
+    """Fit ``free`` parameters of a compiled model to measured features.
+
+    Parameters
+    ----------
+    model : a CompiledModel.
+    features : measured features (``data.load_features``).
+    free : parameter names to estimate: netlist parameters (``La``) or component parameters
+        (``La.L``).
+    params : other overrides [SI]; a value for a free parameter is its start value.
+    bounds : ``{name: (low, high)}`` [SI]; default: a factor 1e4 either way of the start,
+        sign kept.
+    harmonic : 'small-signal' (default) or 'pss' (see ``predict_features``).
+    max_nfev : largest number of model evaluations (Jacobian evaluations not counted).
+
+    Returns
+    -------
+    FitResult
+        With ``kind='features'``; each feature's residual in ``residuals`` [SI] and in sigmas
+        (or relative to its value when no sigma is given) in ``errors``.
+    """
+    features.check(model)
+    params = dict(params or {})
+    space = _space(model, free, params, bounds)
+    vals = np.array([f.value for f in features.features])
+    absolute = all(f.sigma is not None for f in features.features)
+    w = np.array([f.sigma if f.sigma is not None else max(abs(f.value), 1e-300)
+                  for f in features.features])
+    failures = [0]
+
+    def overrides(z: np.ndarray) -> dict[str, float]:
+        return {**params, **dict(zip(space.names, space.theta(z).tolist(), strict=True))}
+
+    def fun(z: np.ndarray) -> np.ndarray:
+        try:
+            pred = predict_features(model, features, overrides(z), harmonic)
+        except (SolverError, ParameterError, np.linalg.LinAlgError):
+            failures[0] += 1
+            return np.full(vals.size, FAILED_PENALTY)
+        return (pred - vals) / w
+
+    z0 = np.zeros(len(free))
+    r0 = fun(z0)
+    if failures[0]:
+        raise SolverError("the model's analyses fail at the start values; check them with "
+                          "`circuitsim op NETLIST`")
+    stages: list[Stage] = []
+    if free:
+        diff = 1e-6 if harmonic == "small-signal" else 1e-4
+        sol = _least_squares(fun, space, z0, diff, max_nfev)
+        z, nfev, ok, msg = sol.x, int(sol.nfev), bool(sol.status > 0), str(sol.message)
+        stages.append(Stage("features", _named(space, z), float(sol.cost), nfev, msg))
+    else:
+        z, nfev, ok, msg = z0, 1, True, "nothing free: the residuals of the start values"
+    r = fun(z) if free else r0
+    h = 1e-5 if harmonic == "small-signal" else 1e-3
+    J = _jacobian(fun, z, h) if free else np.zeros((vals.size, 0))
+    unc = _uncertainty(J, r, space, z, None, absolute)
+    fitted = overrides(z)
+    pred = predict_features(model, features, fitted, harmonic)
+    labels = _labels(features)
+    return _result(model, space, z, unc, "features", ok, msg, nfev, stages,
+                   residuals={k: float(v - p) for k, v, p in zip(labels, vals, pred,
+                                                                 strict=True)},
+                   errors={k: float((v - p) / s) for k, v, p, s in zip(labels, vals, pred, w,
+                                                                       strict=True)},
+                   params=fitted, predicted=dict(zip(labels, pred.tolist(), strict=True)),
+                   measured=dict(zip(labels, vals.tolist(), strict=True)),
+                   sigma={k: f.sigma for k, f in zip(labels, features.features, strict=True)})
+
+
+def _labels(features: FeatureSet) -> list[str]:
+    out: list[str] = []
+    for f in features.features:
+        label, k = f.label, 2
+        while label in out:
+            label, k = f"{f.label} #{k}", k + 1
+        out.append(label)
+    return out
+
+
+# ---------------------------------------------------------------------------- records
+
+def _probes_of(model, record: Record, probes: Sequence[str] | None) -> list[str]:
+    names = list(probes) if probes else [p for p in model.probe_names if p in record.columns]
+    for p in names:
+        if p not in model.probe_names:
+            raise FitError(f"'{p}' is not a probe of the netlist (probes: "
+                           f"{', '.join(model.probe_names)})")
+        if p not in record.columns:
+            raise DataError(f"the record has no column '{p}' (columns: "
+                            f"{', '.join(record.names)}). Measure it, or leave it out of "
+                            f"--probes", None)
+    if not names:
+        raise DataError(f"record '{record.path}' has no column for any probe of the netlist "
+                        f"({', '.join(model.probe_names)})")
+    return names
+
+
+def _spread(x: np.ndarray) -> float:
+    """Measured spread of a probe: its standard deviation (its mean's size if it is flat)."""
+    s = float(np.std(x))
+    return s if s > 1e-12 * (1 + float(np.max(np.abs(x)))) else max(float(np.mean(np.abs(x))),
+                                                                      1.0)
+
+
+def smoothing_windows(t: np.ndarray, columns: Sequence[np.ndarray]) -> np.ndarray:
+    """Row-normalised Hann weights (n_windows, n_samples) for the slow features of stage 1.
+
+    Windows are at least ``WINDOW_PERIODS`` periods of the strongest ripple found in the
+    second half of the record, and at least 1/20 of it; they overlap by half. Trapezoidal
+    sample weights make the average right on a non-uniform grid.
+    """
+    from .signal import dominant_ripple
+
+    duration = float(t[-1] - t[0])
+    period = 0.0
+    best = 0.0
+    half = t >= t[0] + 0.5 * duration
+    for x in columns:
+        try:
+            h = dominant_ripple(t[half], x[half])
+        except ValueError:
+            continue
+        rel = h.amplitude / _spread(x)
+        if h.frequency > 0 and rel > best:
+            best, period = rel, 1.0 / h.frequency
+    length = min(max(WINDOW_PERIODS * period, duration / 20), duration / 2)
+    hop = length / 2
+    centers = t[0] + length / 2 + hop * np.arange(int((duration - length) / hop + 1e-9) + 1)
+    dt = np.empty_like(t)
+    dt[1:-1] = (t[2:] - t[:-2]) / 2
+    dt[0], dt[-1] = (t[1] - t[0]) / 2, (t[-1] - t[-2]) / 2
+    u = (t[None, :] - centers[:, None]) / length
+    W = np.where(np.abs(u) < 0.5, 0.5 * (1 + np.cos(2 * np.pi * u)), 0.0) * dt[None, :]
+    return W / W.sum(axis=1, keepdims=True)
+
+
+def slow_features(W: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """Windowed means and ripple RMS of ``x`` (phase-insensitive summaries)."""
+    m = W @ x
+    rms = np.sqrt(np.maximum(W @ (x * x) - m * m, 0.0))
+    return np.concatenate([m, rms])
+
+
+def fit_record(model, record: Record, free: Sequence[str], *,
+               params: Mapping[str, float] | None = None,
+               bounds: Mapping[str, tuple[float, float]] | None = None,
+               probes: Sequence[str] | None = None, staged: bool = True,
+               rtol: float = 1e-8, atol: float | None = None,
+               max_nfev: int = 100) -> FitResult:
+    """Fit ``free`` parameters of a compiled model to a measured record (output error).
+
+    The model is simulated from rest on the record's time grid and compared with each probe
+    column, normalised by the column's spread. With ``staged=True`` (default) a first stage
+    fits the phase-insensitive slow features (``smoothing_windows``, ``slow_features``) and
+    the second refines on the full waveform from there; ``staged=False`` is the naive
+    single-stage waveform fit (it falls into a local minimum when a ripple locked to the
+    rotor angle is misaligned, see the module docstring).
+
+    Parameters
+    ----------
+    model : a CompiledModel.
+    record : measured time series (``data.load_record``); simulation starts at t = 0.
+    free : parameter names to estimate (``La`` or ``La.L``).
+    params : other overrides [SI]; a value for a free parameter is its start value.
+    bounds : ``{name: (low, high)}`` [SI]; default: a factor 1e4 either way, sign kept.
+    probes : probe columns to compare (default: every probe the record has).
+    staged : slow features first, then the waveform (default), or the waveform only.
+    rtol, atol : integrator tolerances for the fit's simulations; tighter than a plain run
+        because finite differences of the parameters must see the model, not the solver.
+    max_nfev : largest number of simulations per stage (Jacobian evaluations not counted).
+
+    Returns
+    -------
+    FitResult
+        With ``kind='record'``, ``sim`` the fitted transient, ``residuals[probe]`` = measured -
+        model on the record's grid, ``errors[probe]`` the NRMSE.
+    """
+    params = dict(params or {})
+    names = _probes_of(model, record, probes)
+    space = _space(model, free, params, bounds)
+    data = [np.asarray(record[p], float) for p in names]
+    spread = np.array([_spread(x) for x in data])
+    t = np.asarray(record.t, float)
+    atol = atol if atol is not None else model.netlist.analysis.atol
+    failures = [0]
+
+    def overrides(z: np.ndarray) -> dict[str, float]:
+        return {**params, **dict(zip(space.names, space.theta(z).tolist(), strict=True))}
+
+    def simulate(z: np.ndarray):
+        try:
+            res = model.simulate(stop=float(t[-1]), params=overrides(z), t_eval=t, rtol=rtol,
+                                 atol=atol)
+        except ParameterError:
+            return None
+        if not res.success or res.t.size != t.size:
+            return None
+        return res
+
+    def waveforms(z: np.ndarray) -> list[np.ndarray] | None:
+        res = simulate(z)
+        return None if res is None else [res[p] for p in names]
+
+    def full(z: np.ndarray) -> np.ndarray:
+        ys = waveforms(z)
+        if ys is None:
+            failures[0] += 1
+            return np.full(t.size * len(names), FAILED_PENALTY)
+        return np.concatenate([(y - x) / s for y, x, s in zip(ys, data, spread, strict=True)])
+
+    W = smoothing_windows(t, data)
+    slow_data = [slow_features(W, x) for x in data]
+
+    def slow(z: np.ndarray) -> np.ndarray:
+        ys = waveforms(z)
+        if ys is None:
+            failures[0] += 1
+            return np.full(sum(d.size for d in slow_data), FAILED_PENALTY)
+        return np.concatenate([(slow_features(W, y) - d) / s
+                               for y, d, s in zip(ys, slow_data, spread, strict=True)])
+
+    z = np.zeros(len(free))
+    if simulate(z) is None:
+        raise SolverError("the simulation fails at the start values of the fit; run the "
+                          "netlist with them (`circuitsim run`) and fix the start values")
+    stages: list[Stage] = []
+    nfev = 0
+    ok, msg = True, "nothing free: the residuals of the start values"
+    if free:
+        plan = [("slow features", slow), ("waveform", full)] if staged else \
+            [("waveform", full)]
+        for name, fun in plan:
+            sol = _least_squares(fun, space, z, 1e-5, max_nfev)
+            z = sol.x
+            nfev += int(sol.nfev)
+            ok, msg = bool(sol.status > 0), str(sol.message)
+            stages.append(Stage(name, _named(space, z), float(sol.cost), int(sol.nfev), msg))
+    r = full(z)
+    if failures[0] and simulate(z) is None:
+        raise SolverError("the simulation fails at the fitted values; bound the parameters "
+                          "(bounds=...) or start closer")
+    J = _jacobian(full, z, 1e-4) if free else np.zeros((r.size, 0))
+    groups = [np.arange(k * t.size, (k + 1) * t.size) for k in range(len(names))]
+    unc = _uncertainty(J, r, space, z, groups, False)
+    fitted = overrides(z)
+    sim = simulate(z)
+    residuals = {p: x - sim[p] for p, x in zip(names, data, strict=True)}
+    errors = {p: float(np.sqrt(np.mean(residuals[p] ** 2)) /
+                       max(float(np.std(x)), 1e-300)) for p, x in zip(names, data, strict=True)}
+    return _result(model, space, z, unc, "record", ok, msg, nfev, stages,
+                   residuals=residuals, errors=errors, params=fitted, sim=sim)
+
+
+# -------------------------------------------------------------------------- dispatch
+
+def fit(model, data: Record | FeatureSet, free: Sequence[str], **kw) -> FitResult:
+    """Fit ``free`` parameters to a record (``fit_record``) or features (``fit_features``)."""
+    if isinstance(data, FeatureSet):
+        return fit_features(model, data, free, **kw)
+    if isinstance(data, Record):
+        return fit_record(model, data, free, **kw)
+    raise TypeError(f"data must be a Record or a FeatureSet, not {type(data).__name__}")
+
+
+def _named(space: _Space, z: np.ndarray) -> dict[str, float]:
+    return dict(zip(space.names, space.theta(z).tolist(), strict=True))
+
+
+def param_unit(model, name: str) -> str:
+    """Unit of a netlist or component parameter, for display."""
+    for comp in model.netlist.components:
+        for key, val in comp.values.items():
+            if key == name:
+                return val.unit
+    for comp in model.netlist.components:
+        for val in comp.values.values():
+            if val.node.kind == "name" and val.node.value == name:
+                return val.unit
+    return ""
+
+
+def _result(model, space: _Space, z: np.ndarray, unc: _Uncertainty, kind: str, ok: bool,
+            msg: str, nfev: int, stages: list[Stage], **kw) -> FitResult:
+    theta = space.theta(z)
+    names = space.names
+    msgs = list(unc.warnings)
+    at_bound = [n for k, n in enumerate(names)
+                if min(z[k] - space.lo[k], space.hi[k] - z[k]) < 1e-6]
+    if at_bound:
+        msgs.append(f"{', '.join(at_bound)} ended at a bound: the optimum may lie beyond it "
+                    f"and the standard error assumes it does not; widen the bounds")
+    if not ok:
+        msgs.append(f"the least-squares fit did not converge: {msg}")
+    for m in msgs:
+        warnings.warn(m, FitWarning, stacklevel=3)
+    return FitResult(
+        free=names, start=dict(zip(names, space.start.tolist(), strict=True)),
+        estimate=dict(zip(names, theta.tolist(), strict=True)),
+        stderr=dict(zip(names, unc.stderr.tolist(), strict=True)),
+        correlation=unc.correlation, condition=unc.condition,
+        identifiable=not unc.flagged,
+        warnings=tuple(msgs), kind=kind, success=ok, message=msg, nfev=nfev,
+        stages=tuple(stages), units={n: param_unit(model, n) for n in names}, **kw)
+
+
+# ------------------------------------------------------------------------------- CLI
+
+def add_cli(sub) -> None:
+    """Register ``circuitsim fit`` on an argparse subparsers action."""
+    f = sub.add_parser("fit", help="fit free parameters to a measured record or features",
+                       description="Nonlinear least squares of free netlist parameters against "
+                       "a CSV record (time + one column per probe, SI) or a features YAML "
+                       "(steady means, harmonic amplitude/frequency).")
+    f.add_argument("netlist")
+    f.add_argument("data", help="CSV record or features YAML")
+    f.add_argument("--free", default="", metavar="NAME,...",
+                   help="parameters to estimate (netlist 'La' or component 'La.L'); none: "
+                        "just the residuals of the netlist's values")
+    f.add_argument("--set", action="append", metavar="NAME=VALUE",
+                   help="override a parameter; for a free one, its start value")
+    f.add_argument("--report", metavar="FIT.json", help="write the full report (JSON)")
+    f.add_argument("--probes", default="", metavar="NAME,...",
+                   help="record: probe columns to compare (default: all the record has)")
+    f.add_argument("--single-stage", action="store_true",
+                   help="record: skip the slow-feature stage (naive waveform fit)")
+    f.add_argument("--harmonic", choices=("small-signal", "pss"), default="small-signal",
+                   help="features: harmonic model (default small-signal; pss: exact, slower)")
+    f.add_argument("--rtol", type=float, default=1e-8, help="record: integrator rtol")
+    f.add_argument("--json", action="store_true", help="print the report as JSON")
+    f.set_defaults(func=cmd_fit)
+
+
+def _split(text: str) -> list[str]:
+    return [s.strip() for s in text.split(",") if s.strip()]
+
+
+def cmd_fit(args) -> int:
+    from .cli import _parse_sets
+    from .data import load_data
+    from .model import compile as compile_model
+    from .netlist import load
+
+    net = load(args.netlist)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        model = compile_model(net)
+    inputs = [t.label.split(":", 1)[1] for c in net.components for t in c.tables]
+    data = load_data(args.data, model.probe_names, inputs=inputs)
+    overrides = _parse_sets(model, args.set or [])
+    free = _split(args.free)
+    with warnings.catch_warnings(record=True) as fit_caught:
+        warnings.simplefilter("always")
+        if isinstance(data, FeatureSet):
+            if args.probes or args.single_stage:
+                raise FitError("--probes and --single-stage apply to a CSV record, not to "
+                               "features")
+            result = fit_features(model, data, free, params=overrides, harmonic=args.harmonic)
+        else:
+            result = fit_record(model, data, free, params=overrides,
+                                probes=_split(args.probes) or None,
+                                staged=not args.single_stage, rtol=args.rtol)
+    physics = [str(w.message) for w in caught]
+    report = {"netlist": args.netlist, "data": args.data, **result.as_dict(),
+              "model_warnings": physics}
+    if args.report:
+        _write_json(args.report, report)
+    if args.json:
+        print(json.dumps(report, indent=1))
+    else:
+        for w in physics:
+            print(f"warning: {w}", file=sys.stderr)
+        print(format_result(result, title=f"{net.title} <- {args.data}"))
+        if args.report:
+            print(f"report: {args.report}")
+    del fit_caught  # the result carries its warnings; the report prints them
+    return 0 if result.success else 1
+
+
+def format_result(result: FitResult, title: str = "") -> str:
+    """Human-readable summary: estimates ± standard errors, correlations, residuals."""
+    lines = [title] if title else []
+    lines.append(f"fit of {len(result.free)} parameter(s) to {result.kind}: "
+                 f"{'converged' if result.success else 'NOT converged'} ({result.nfev} "
+                 f"evaluations; stages: {', '.join(s.name for s in result.stages) or '-'})")
+    if result.free:
+        lines.append(f"{'parameter':<16}{'start':>14}{'estimate':>16}{'std. error':>14}"
+                     f"{'rel.':>9}  unit")
+        for n in result.free:
+            est, se = result.estimate[n], result.stderr[n]
+            rel = f"{abs(se / est):8.2%}" if math.isfinite(se) and est else "       -"
+            se_s = f"{se:14.5g}" if math.isfinite(se) else f"{'(see warning)':>14}"
+            lines.append(f"{n:<16}{result.start[n]:>14.6g}{est:>16.8g}{se_s}{rel:>9}  "
+                         f"{result.units.get(n, '')}")
+        if len(result.free) > 1:
+            lines.append("correlation:")
+            w = max(max(len(n) for n in result.free) + 2, 9)
+            lines.append(" " * w + "".join(f"{n:>{w}}" for n in result.free))
+            for i, n in enumerate(result.free):
+                lines.append(f"{n:<{w}}" + "".join(f"{c:>{w}.4f}"
+                                                   for c in result.correlation[i]))
+        lines.append(f"information condition number: {result.condition:.3g}")
+    if result.kind == "features":
+        lines.append(f"{'feature':<34}{'measured':>14}{'model':>14}{'residual':>14}")
+        for k in result.predicted:
+            lines.append(f"{k:<34}{result.measured[k]:>14.6g}{result.predicted[k]:>14.6g}"
+                         f"{result.residuals[k]:>14.4g}")
+    else:
+        lines.append(f"{'probe':<16}{'NRMSE':>10}{'RMS residual':>16}")
+        for k, v in result.errors.items():
+            rms = float(np.sqrt(np.mean(np.asarray(result.residuals[k]) ** 2)))
+            lines.append(f"{k:<16}{v:>10.4g}{rms:>16.5g}")
+    for m in result.warnings:
+        lines.append(f"WARNING: {m}")
+    return "\n".join(lines)
+
+
+def _write_json(path: str, obj: dict) -> None:
+    """Write atomically: a killed run leaves the old report or none, never half of one."""
+    d = os.path.dirname(os.path.abspath(path)) or "."
+    os.makedirs(d, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=d, prefix=".circuitsim-", suffix=".json")
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as fh:
+            json.dump(obj, fh, indent=1, allow_nan=False)
+            fh.write("\n")
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
