@@ -78,6 +78,9 @@ LF_RANGE = "1e-9..1e-1:log:9"  # [H]
 # SOLVER-NOTES Fig. 9 (Rf = 0, 0.3 s from rest, last 0.05 s, sine-only fit), I8 [A]
 REF_I8 = [0.380641, 0.380637, 0.380599, 0.380221, 0.376479, 0.342658, 0.179293, 0.030793,
           0.0033134]
+# looser circuitsim tolerances than the netlist's (rtol 1e-8, atol 1e-10), timed too: the
+# cheapest whose I8 error (~6e-5) still beats ngspice at tmax 10 us (~2.3e-4)
+CS_LOOSE = ((1e-7, 1e-9),)
 NG_TMAX = (10e-6, 2e-6, 1e-6)  # [s] ngspice max step = print step
 NG_RELTOL = 1e-6
 TARGET_RATIO = 0.5  # circuitsim sweep time / ngspice total
@@ -201,15 +204,16 @@ def cpu_calibration() -> dict[str, float]:
     return {"alone": alone, "pair": pair, "factor": 2 * alone / pair}
 
 
-def cs_sweep(lfs: list[float], jobs: int) -> tuple[float, list[dict[str, Any]]]:
-    """Wall time [s] of one ``sweep`` call and its rows."""
+def cs_sweep(lfs: list[float], jobs: int, **options: float
+             ) -> tuple[float, list[dict[str, Any]]]:
+    """Wall time [s] of one ``sweep`` call and its rows (``options``: rtol, atol)."""
     from circuitsim.sweep import Metrics, sweep
 
     metrics = Metrics(probes=("i_total",), order=8, window=(T_STOP - T_WIN) / T_STOP,
                       energy=False)
     t0 = time.perf_counter()
     rows = sweep(str(NETLIST), {"Lf": lfs, "Rf": [0.0]}, metrics=metrics, stop=T_STOP,
-                 jobs=jobs)
+                 jobs=jobs, **options)
     wall = time.perf_counter() - t0
     bad = [r for r in rows if r.get("status") != "ok"]
     if bad:
@@ -398,6 +402,17 @@ def main(argv: list[str] | None = None) -> int:
     print(f"  the rows' own i_total.ripple_amp (order 8) agree with the near={NEAR} fit to "
           f"{row_dev:.1e} relative")
 
+    loose = []
+    for rtol, atol in CS_LOOSE:
+        runs = [cs_sweep(lfs, 1, rtol=rtol, atol=atol) for _ in range(reps)]
+        w, r = min(runs, key=lambda x: x[0])
+        i8 = [x["i_total.ripple_amp"] for x in r]
+        loose.append({"rtol": rtol, "atol": atol, "jobs1": w, "i8": i8,
+                      "max_err": max(rel(a, b) for a, b in zip(i8, REF_I8, strict=True))})
+        print(f"  looser: rtol {rtol:g}, atol {atol:g}: jobs=1 {w:.3f} s, max I8 error vs "
+              f"SOLVER-NOTES {loose[-1]['max_err']:.1e} (rows' own fit)")
+    res["circuitsim"]["loose"] = loose
+
     t0 = time.perf_counter()
     ls_i8 = [lsoda_i8(lf) for lf in lfs]
     print(f"LSODA reference (rtol 1e-11): {time.perf_counter() - t0:.1f} s")
@@ -507,6 +522,16 @@ def main(argv: list[str] | None = None) -> int:
                   f"{r1:.2f}x -> {verdict(r1 <= TARGET_RATIO)}")
             print(f"    jobs=2 {t2:.3f} s / ngspice 2-at-a-time wall {d['par_wall']:.3f} s = "
                   f"{r2:.2f}x -> {verdict(r2 <= TARGET_RATIO)}")
+        if 10e-6 in ng:
+            ng_err = tools["ngspice tmax 10 us"]["max_err"]
+            for lo in loose:
+                if lo["max_err"] <= ng_err:
+                    r1 = lo["jobs1"] / ng[10e-6]["seq_rusage"]
+                    print(f"    (not the netlist default) circuitsim rtol {lo['rtol']:g}, atol "
+                          f"{lo['atol']:g}, max error {lo['max_err']:.1e} <= ngspice 10 us's "
+                          f"{ng_err:.1e}: jobs=1 {lo['jobs1']:.3f} s / "
+                          f"{ng[10e-6]['seq_rusage']:.3f} s = {r1:.2f}x -> "
+                          f"{verdict(r1 <= TARGET_RATIO)}")
     else:
         print("  ratio target: not evaluated (no ngspice)")
     print(f"  speed-up jobs=1 -> jobs=2 >= {TARGET_SPEEDUP}x: {t1:.3f} / {t2:.3f} = "

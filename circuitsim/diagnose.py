@@ -41,7 +41,7 @@ from .errors import CircuitsimError
 
 BIC_MARGIN = 10.0  # "very strong" evidence on the Kass-Raftery scale
 EXCESS_FRACTION = 0.3  # share of the above-noise residual an accepted effect must explain
-SCREEN_TOP = 3  # candidates refitted with full simulation per round
+SCREEN_TOP = 4  # candidates refitted with full simulation per round
 MAX_EFFECTS = 4
 ORDER_TOL = 0.03  # a spectral peak is order k when |f/f_shaft - k| < ORDER_TOL k
 
@@ -347,19 +347,25 @@ def diagnose(netlist, record, free: Sequence[str] = (), *, probes: Sequence[str]
     spread = np.array([max(float(np.std(record[p])), 1e-300) for p in probes])
     n_samples = record.t.size * len(probes)
 
-    def refit(model_, free_, params_, bounds_):
+    def refit(model_, free_, params_, bounds_, staged=False):
+        # a candidate starts from its score-test estimate, inside the right basin: one
+        # waveform stage with a few iterations is enough (the declared fit is staged)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
+            bounds_ = {k: v for k, v in (bounds_ or {}).items() if k in free_}
             return fit_record(model_, record, free_, params=params_, bounds=bounds_ or None,
-                              probes=probes, rtol=rtol)
+                              probes=probes, rtol=rtol, staged=staged,
+                              max_nfev=100 if staged else 12)
 
-    fit0 = refit(model, list(free), dict(params or {}), {})
+    fit0 = refit(model, list(free), dict(params or {}), {}, staged=True)
     clock["fit"] = time.perf_counter() - clock["start"]
     state = _State(net.raw, model, list(free), dict(fit0.params), fit0, {})
     analysis0 = analyse(model, record, fit0, probes)
     sigma2 = sum(analysis0["probes"][p]["noise_sigma"] ** 2 / s**2 * record.t.size
                  for p, s in zip(probes, spread, strict=True))
     accepted: list[Accepted] = []
+    chosen: list[Any] = []  # the accepted candidates, in order
+    alternatives: list[list[tuple[Any, dict[str, float]]]] = []  # near-equals per round
     rejected: list[dict[str, Any]] = []
     indistinct: list[str] = []
     tried: set[str] = set()
@@ -371,7 +377,8 @@ def diagnose(netlist, record, free: Sequence[str] = (), *, probes: Sequence[str]
         e0 = _normalised(record, probes, state.fit.residuals, spread)  # measured - model
         t0 = time.perf_counter()
         cands = [c for c in effects.candidates(load_raw_netlist(state.raw),
-                                               _orders(analysis)) if c.key not in tried]
+                                               _orders(analysis))
+                 if c.key not in tried and c.key not in {x.key for x in chosen}]
         scored = []
         for c in cands:
             say(f"screening {c.key}")
@@ -400,6 +407,7 @@ def diagnose(netlist, record, free: Sequence[str] = (), *, probes: Sequence[str]
                                  "reason": f"refit failed: {exc.bare}"})
                 continue
             sse = _sse(f, probes, spread)
+            say(f"  {c.key}: SSE {sse0:.5g} -> {sse:.5g}")
             k = len(c.free)
             dbic = n_samples * math.log(max(sse, 1e-300) / sse0) + k * math.log(n_samples)
             entry = (dbic, c, s, f, sse)
@@ -427,6 +435,10 @@ def diagnose(netlist, record, free: Sequence[str] = (), *, probes: Sequence[str]
                                   f"{dbic:.1f} vs {dbic2:.1f}): the data cannot tell them "
                                   f"apart")
         raw = c.apply(state.raw)
+        chosen.append(c)
+        alternatives.append([(c2, {n: f2.params[n] for n in c2.free})
+                             for _, c2, _, f2, sse2 in results
+                             if c2 is not c and sse2 < 1.1 * sse])
         state = _State(raw, s["model"], [*state.free, *c.free], dict(f.params), f,
                        {**state.bounds, **{n: (lo, hi) for n, (_, lo, hi) in c.free.items()}})
         analysis = analyse(state.model, record, f, probes)
@@ -442,6 +454,11 @@ def diagnose(netlist, record, free: Sequence[str] = (), *, probes: Sequence[str]
              "screen_gain": s["gain"], "spectral_peak": peak,
              "sse_before": sse0, "sse_after": sse}))
         say(f"accepted {c.key}: error {f.error:.4g}")
+        # Forward selection is greedy: an effect chosen while another was still missing may
+        # have been a stand-in for a near-equal alternative (viscous friction for Coulomb
+        # friction while a cogging ripple blurred the record). Revisit earlier choices.
+        state = _revisit(state, chosen, alternatives, accepted, net.raw, list(free), refit,
+                         probes, spread, n_samples, say)
     final = state.fit
     analysis_after = analysis
     sse_end = _sse(final, probes, spread)
@@ -465,6 +482,54 @@ def diagnose(netlist, record, free: Sequence[str] = (), *, probes: Sequence[str]
                      indistinct, remaining, analysis0, analysis_after, raw, fit0, final, record,
                      {"fit_declared": clock["fit"], "screen": screen_time, "refit": refit_time,
                       "total": clock_total}, rejected)
+
+
+def _revisit(state: _State, chosen, alternatives, accepted, base_raw, declared, refit,
+             probes, spread, n_samples, say) -> _State:
+    """Swap an earlier accepted effect for one of its near-equal alternatives when, with the
+    later effects in place, the swap lowers the BIC by more than ``BIC_MARGIN``."""
+    sse_now = _sse(state.fit, probes, spread)
+    for i in range(len(chosen) - 1):
+        for alt, alt_start in alternatives[i]:
+            trial = [*chosen[:i], alt, *chosen[i + 1:]]
+            raw = base_raw
+            for c in trial:
+                raw = c.apply(raw)
+            params = {k: v for k, v in state.params.items() if k not in chosen[i].free}
+            params.update(alt_start)
+            free = [*declared, *(n for c in trial for n in c.free)]
+            bounds = {n: (min(lo, params.get(n, st)), max(hi, params.get(n, st)))
+                      for c in trial for n, (st, lo, hi) in c.free.items()}
+            try:
+                f = refit(_compile(raw), free, params, bounds)
+            except CircuitsimError:
+                continue
+            sse = _sse(f, probes, spread)
+            if n_samples * math.log(max(sse, 1e-300) / sse_now) < -BIC_MARGIN:
+                say(f"revised: {alt.key} replaces {chosen[i].key}")
+                old = chosen[i]
+                chosen[i] = alt
+                alternatives[i] = [(old, {n: state.params[n] for n in old.free})]
+                a = accepted[i]
+                a.effect, a.target = alt.effect, alt.target
+                a.parameters = {**{n: f.estimate[n] for n in alt.free},
+                                **({"order": alt.fixed["order"]} if "order" in alt.fixed
+                                   else {})}
+                a.stderr = {n: (f.stderr[n] if math.isfinite(f.stderr[n]) else None)
+                            for n in alt.free}
+                a.evidence = {**a.evidence, "what": alt.what,
+                              "revised": f"replaced {old.effect} on {old.target} once "
+                                         f"later effects were in place"}
+                for b in accepted:
+                    for n in list(b.parameters):
+                        if n in f.estimate:
+                            b.parameters[n] = f.estimate[n]
+                accepted[-1].error_after = f.error
+                state = _State(raw, _compile(raw), free, dict(f.params), f,
+                               {**state.bounds, **bounds})
+                sse_now = sse
+                break
+    return state
 
 
 def load_raw_netlist(raw):

@@ -89,7 +89,8 @@ def consistent_initial(model, t0: float, y: np.ndarray, p: tuple[float, ...],
     return y, yp
 
 
-def initial_state(model, t0: float, p: tuple[float, ...]) -> tuple[np.ndarray, list[str]]:
+def initial_state(model, t0: float, p: tuple[float, ...],
+                  overridden: frozenset[str] = frozenset()) -> tuple[np.ndarray, list[str]]:
     """Differential states at rest, then the components' initial values applied.
 
     A value given for a state is set directly; one given for an expression of states (a
@@ -108,7 +109,7 @@ def initial_state(model, t0: float, p: tuple[float, ...]) -> tuple[np.ndarray, l
     target = np.array(initial(t0, y, np.zeros(n), p)[:k], float)
     # Only initial values written in the netlist are constraints; a parameter's default
     # (i0 = 0, v0 = 0) is just "from rest" and yields to them.
-    strong = _given(model)
+    strong = _given(model, overridden)
     direct = [(j, idx) for j, (_, idx, _) in enumerate(entries) if 0 <= idx < nd and
               strong[j]]
     for j, idx in direct:
@@ -136,7 +137,7 @@ def initial_state(model, t0: float, p: tuple[float, ...]) -> tuple[np.ndarray, l
 
 
 def check_initial(model, t0: float, y: np.ndarray, yp: np.ndarray,
-                  p: tuple[float, ...]) -> list[str]:
+                  p: tuple[float, ...], overridden: frozenset[str] = frozenset()) -> list[str]:
     """Initial values that the consistent start could not honour (for a warning)."""
     _, _, _, _, initial = model.fns
     k = len(model.meta["initial"])
@@ -144,16 +145,17 @@ def check_initial(model, t0: float, y: np.ndarray, yp: np.ndarray,
         return []
     vals = np.array(initial(t0, y, yp, p), float)
     target, got = vals[:k], vals[k:]
-    strong = _given(model)
+    strong = _given(model, overridden)
     return [f"{name} = {target[j]:.6g} (the circuit gives {got[j]:.6g})"
             for j, (name, _, _) in enumerate(model.meta["initial"])
             if strong[j] and abs(got[j] - target[j]) > 1e-6 * (1 + abs(target[j]))]
 
 
-def _given(model) -> list[bool]:
-    """Which initial-value entries come from values written in the netlist."""
+def _given(model, overridden: frozenset[str] = frozenset()) -> list[bool]:
+    """Which initial-value entries come from values written in the netlist or overridden
+    at run time (``params``)."""
     explicit = {name for c in model.netlist.components for name, v in c.values.items()
-                if v.explicit}
+                if v.explicit or name in overridden}
     return [any(q in explicit for q in params) for _, _, params in model.meta["initial"]]
 
 
@@ -199,7 +201,8 @@ def simulate(model, stop: float | None = None, params: Mapping[str, float] | Non
     if n == 0:  # every unknown was eliminated: the outputs are explicit functions of t
         empty = np.zeros((0, t_eval.size))
         return SimResult(t_eval, empty, empty, (), Status.OK, "", 0, 0, model, p)
-    y0, _ = initial_state(model, 0.0, p)
+    overridden = frozenset(params or {})
+    y0, _ = initial_state(model, 0.0, p, overridden)
     if init == "op":
         from .analyses import operating_point
 
@@ -216,7 +219,7 @@ def simulate(model, stop: float | None = None, params: Mapping[str, float] | Non
         return SimResult(t_eval[:1], np.zeros((n, 0)), np.zeros((n, 0)), model.state_names,
                          Status.INIT_FAILED, exc.bare, 0, 0, model, p)
     if init == "rest":
-        ignored = check_initial(model, 0.0, y0, yp0, p)
+        ignored = check_initial(model, 0.0, y0, yp0, p, overridden)
         if ignored:
             import warnings
 

@@ -37,6 +37,8 @@ def registry():
         ureg = pint.UnitRegistry()
     for line in ("rev = revolution", "rps = revolution / second"):
         # a pint version that already defines the name keeps its own definition
+        if line.split()[0] in ureg:
+            continue
         with contextlib.suppress(Exception):
             ureg.define(line)
     return ureg

@@ -69,3 +69,17 @@ def test_emf_on_a_locked_rotor(compile_text):
     i = 6 * (1 - np.exp(-np.maximum(res.t - 0.5e-9, 0) / 1e-3))
     np.testing.assert_allclose(res["i"], i, rtol=1e-5, atol=1e-7)
     np.testing.assert_allclose(res["tau"], -0.05 * i, rtol=1e-5, atol=1e-8)
+
+
+def test_initial_value_overridden_at_run_time_is_honoured(compile_text):
+    """An initial value given only through params= counts as given (issue #6 found this)."""
+    model = compile_text("""
+        components:
+          - {name: Jr, type: inertia, shaft: s, J: 1e-5}
+          - {name: Bv, type: damper, shaft: s, b: 1e-5}
+        probes: {w: s.w, phi: s.phi}
+        analysis: {stop: 1.0, step: 10 ms, rtol: 1e-10, atol: 1e-13}
+    """)
+    res = model.simulate(params={"Jr.w0": 10.0, "Jr.phi0": 0.5})
+    np.testing.assert_allclose(res["w"], 10 * np.exp(-res.t), rtol=1e-6)
+    assert res["phi"][0] == pytest.approx(0.5)

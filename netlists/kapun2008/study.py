@@ -3,8 +3,10 @@
 Simulates the open-circuit back-EMF test (emf.yaml) and the torque test (bldc.yaml) once each,
 adds measurement noise with 40 (torque) or 10 (back-EMF) seeds, identifies Table 2 and Table 3
 from the noisy records and prints the Markdown tables of netlists/kapun2008/README.md; fits the
-ODrive cogging maps; writes the figures and two example records (CSV, for the CLI) to
-``OUT`` (default: this folder). Every number in that README comes from this script.
+ODrive cogging maps; writes the figures next to this file and, given a folder
+(`python netlists/kapun2008/study.py OUT`), two noisy example records as CSV for the CLI
+(`OUT/emf_test_seed0.csv`, `OUT/torque_test_seed0.csv`; a few MB, so not in the repository).
+Every number in that README comes from this script.
 """
 
 from __future__ import annotations
@@ -79,7 +81,8 @@ def angle_spectrum(theta: np.ndarray, x: np.ndarray, per_turn: int = 4096) -> np
     return spec[::turns][: per_turn // 2]
 
 
-def main(out: Path = HERE) -> None:
+def main(records: Path | None = None) -> None:
+    out = HERE
     emf_rec = simulate("emf")
     curve, efits = back_emf_study(emf_rec)
     st2 = idf.repeat_statistics(efits)
@@ -114,6 +117,21 @@ def main(out: Path = HERE) -> None:
     pk, at = idf.peak_cogging(exact, PP, (3, 6))
     print(f"peak cogging torque of Table 3: {pk * 1e3:.4f} mN m at theta = {at:.4f} rad\n")
 
+    emf = idf.emf_from_coefficients(TABLE2, None, PP)
+    clean = idf.disturbance_observer(
+        w, idf.mutual_torque(rec["theta"], [rec["i1"], rec["i2"], rec["i3"]], emf), J_TOT, TS)
+    print(f"observer on the noise-free record: max |w - w_hat| after 0.1 s "
+          f"{np.abs(clean.error[1000:]).max():.2e} rad/s (the paper's Fig. 9: < 2e-3)")
+    n = idf.add_noise(rec, NOISE_DRIVE, 0)
+    obs = idf.disturbance_observer(
+        n["omega"], idf.mutual_torque(n["theta"], [n["i1"], n["i2"], n["i3"]], emf), J_TOT, TS)
+    curve = idf.disturbance_error_curve(n["theta"], n["omega"], obs.t_dist, PP, 12,
+                                        observer=obs)
+    print(f"J_min of T_dist versus the number of cogging harmonics K = 0..12 (one noisy "
+          f"record) [N^2 m^2]: {', '.join(f'{j:.4g}' for j in curve)}\n")
+    idf._plot_curve(curve, "number of cogging harmonics K", "J_min [N^2 m^2]",
+                    out / "cogging_jmin.png")
+
     for label, kw in (("regressors through the observer loop", {"compensate": True}),
                       ("plain fit of the compensator output", {"compensate": False}),
                       ("observer loop, steady part only (t > 1 s)",
@@ -133,6 +151,16 @@ def main(out: Path = HERE) -> None:
               f"{st.row('B')[1] / st.row('B')[0]:.2%}; observer speed error max "
               f"{np.abs(obs.error[100:]).max():.3g} rad/s\n")
 
+    if records is not None:
+        write_records(records, emf_rec, rec)
+    if ODRIVE.is_file():
+        odrive_study(out)
+
+
+def write_records(folder: Path, emf_rec: dict, rec: dict) -> None:
+    """Noisy example records (seed 0) as CSV, the input of `circuitsim identify`."""
+    folder.mkdir(parents=True, exist_ok=True)
+    out = folder
     n0 = idf.add_noise(rec, NOISE_DRIVE, 0)
     cols = ["time", "theta", "omega", "i1", "i2", "i3"]
     np.savetxt(out / "torque_test_seed0.csv", np.column_stack([n0[c] for c in cols]),
@@ -141,9 +169,6 @@ def main(out: Path = HERE) -> None:
     cols = ["time", "theta", "omega", "e1"]
     np.savetxt(out / "emf_test_seed0.csv", np.column_stack([e0[c] for c in cols]),
                delimiter=",", header=",".join(cols), comments="", fmt="%.9g")
-
-    if ODRIVE.is_file():
-        odrive_study(out)
 
 
 def odrive_study(out: Path) -> None:
@@ -172,4 +197,4 @@ def odrive_study(out: Path) -> None:
 
 
 if __name__ == "__main__":
-    main(Path(sys.argv[1]) if len(sys.argv) > 1 else HERE)
+    main(Path(sys.argv[1]) if len(sys.argv) > 1 else None)

@@ -1,0 +1,153 @@
+"""The diagnosis on records with effects nobody declared (issue #5).
+
+Each "measured" record is made by circuitsim from a richer netlist -- the DC motor example plus
+one or two effects of the catalog, or one outside it -- simulated at 50 kHz, resampled to
+10 kHz, with white noise and ADC quantisation added. The netlist under test declares none of
+them. Noise: speed 0.1 rad/s and current 1 mA (1 sigma); ADC steps 0.05 rad/s and 0.5 mA.
+"""
+
+from __future__ import annotations
+
+import json
+import warnings
+
+import numpy as np
+import pytest
+
+import circuitsim as cs
+from circuitsim import effects
+from circuitsim.data import Record
+from circuitsim.diagnose import diagnose
+from circuitsim.netlist import build
+
+from conftest import NETLISTS
+
+MOTOR = NETLISTS / "examples" / "dc_motor.yaml"
+NOISE = {"speed": 0.1, "i": 1e-3}
+LSB = {"speed": 0.05, "i": 5e-4}
+T = np.linspace(0.0, 0.3, 3001)  # 10 kHz record
+
+
+def _candidate(net, effect, target, order=None):
+    orders = {"rotor": [order]} if order else None
+    return next(c for c in effects.candidates(net, orders)
+                if c.effect == effect and c.target == target and
+                (order is None or c.fixed.get("order") == order))
+
+
+def make_record(patches, seed=0, extra=None):
+    """Simulate the motor with hidden effects, resample, add noise and quantise."""
+    net = cs.load(MOTOR)
+    raw, values = net.raw, {}
+    for effect, target, order, vals in patches:
+        cand = _candidate(build(raw), effect, target, order)
+        raw = cand.apply(raw)
+        values.update(dict(zip(cand.free, vals, strict=True)))
+    if extra is not None:
+        raw = extra(raw)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        model = cs.compile(build(raw))
+    fine = np.linspace(0.0, 0.3, 15001)
+    res = model.simulate(t_eval=fine, params=values, rtol=1e-10, atol=1e-13)
+    assert res.success, res.message
+    rng = np.random.default_rng(seed)
+    cols = {}
+    for p in ("speed", "i"):
+        x = np.interp(T, fine, res[p]) + rng.normal(0.0, NOISE[p], T.size)
+        cols[p] = np.round(x / LSB[p]) * LSB[p]
+    return Record(T.copy(), cols, f"synthetic seed {seed}")
+
+
+def noise_floor(rec):
+    """The NRMSE a perfect model would leave: noise (and ADC) over the record's spread."""
+    v = [np.sqrt(NOISE[p] ** 2 + LSB[p] ** 2 / 12) / np.std(rec[p]) for p in ("speed", "i")]
+    return float(np.sqrt(np.mean(np.square(v))))
+
+
+def run(rec):
+    return diagnose(cs.load(MOTOR), rec)
+
+
+HIDDEN = [
+    ("coulomb-friction", "rotor", None, [5e-4]),
+    ("viscous-friction", "rotor", None, [5e-6]),
+    ("brush-drop", "M", None, [0.3]),
+    ("resistance-drift", "Rw", None, [0.5]),
+    ("cogging", "rotor", 6, [1e-3, 0.0]),
+    ("emf-harmonic", "M", 3, [1e-4, 0.0]),
+]
+
+
+@pytest.mark.parametrize("hidden", HIDDEN, ids=[h[0] for h in HIDDEN])
+def test_one_hidden_effect_is_found_first(hidden):
+    effect, target, order, vals = hidden
+    rec = make_record([hidden], seed=1)
+    d = run(rec)
+    assert d.effects, d.summary()
+    first = d.effects[0]
+    if effect == "coulomb-friction":
+        # a motor that never reverses cannot tell friction from a constant load torque
+        # (the catalog says coulomb-friction stands for both): either, and say so
+        assert first.effect in ("coulomb-friction", "force-offset"), d.summary()
+        assert any("coulomb-friction" in s and "force-offset" in s for s in d.indistinct)
+        vals = [vals[0] if first.effect == "coulomb-friction" else -vals[0]]
+    else:
+        assert (first.effect, first.target) == (effect, target), d.summary()
+    if order:
+        assert first.parameters["order"] == order
+        # a harmonic's size is the amplitude of its sine and cosine parts together
+        amp = np.hypot(*[v for k, v in first.parameters.items() if k != "order"])
+        assert amp == pytest.approx(np.hypot(*vals), rel=0.05)
+    else:
+        (value,) = [v for k, v in first.parameters.items()]
+        assert value == pytest.approx(vals[0], rel=0.05)
+    assert d.error_after < 1.2 * noise_floor(rec) < d.error_before
+
+
+def test_series_resistance_is_found_or_named_indistinguishable():
+    """In a one-loop motor a resistance in series with the winding, the EMF or the source are
+    the same equation: the diagnosis must find it and say it cannot tell where it sits."""
+    rec = make_record([("series-resistance", "Lw", None, [0.2])], seed=2)
+    d = run(rec)
+    first = d.effects[0]
+    assert first.effect in ("series-resistance", "source-resistance")
+    (value,) = [v for k, v in first.parameters.items()]
+    assert value == pytest.approx(0.2, rel=0.05)
+    assert any("cannot tell" in s for s in d.indistinct)
+    assert d.error_after < 1.2 * noise_floor(rec)
+
+
+def test_no_hidden_effect_no_false_alarm():
+    for seed in (3, 4):
+        d = run(make_record([], seed=seed))
+        assert d.effects == [], d.summary()
+        assert d.summary().startswith("nothing significant")
+
+
+def test_two_hidden_effects_are_both_found():
+    rec = make_record([("coulomb-friction", "rotor", None, [5e-4]),
+                       ("cogging", "rotor", 6, [1e-3, 0.0])], seed=5)
+    d = run(rec)
+    found = {a.effect for a in d.effects}
+    assert "cogging" in found and found & {"coulomb-friction", "force-offset"}, d.summary()
+    assert d.error_after < 1.2 * noise_floor(rec)
+
+
+def test_effect_outside_the_catalog_is_not_misattributed(tmp_path):
+    """A 50 Hz hum on the supply (not a shaft order, not in the catalog): no confident
+    attribution, and the report says structure remains."""
+
+    def hum(raw):
+        entry = raw.component_entry("V1")
+        entry["V"] = {"sine": {"offset": 12.0, "amplitude": 0.3, "freq": 50.0}}
+        return raw
+
+    rec = make_record([], seed=6, extra=hum)
+    d = run(rec)
+    assert d.effects == [], d.summary()
+    assert d.remaining["structure"], d.remaining
+    peaks = [p["frequency"] for pr in d.analysis_after["probes"].values() for p in pr["peaks"]]
+    assert any(abs(f - 50.0) < 1.0 for f in peaks)
+    report = json.loads(json.dumps(d.as_dict()))
+    assert report["effects"] == [] and report["error_before"] > 0
