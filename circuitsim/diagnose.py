@@ -386,6 +386,13 @@ def diagnose(netlist, record, free: Sequence[str] = (), *, probes: Sequence[str]
             if s is not None and s["gain"] > 0:
                 scored.append((c, s))
         scored.sort(key=lambda cs: -cs[1]["gain"])
+        # A candidate whose best linear gain cannot pay its BIC penalty will not pass after
+        # a refit either (the score test is exact for effects linear in their parameters):
+        # refitting it would only cost simulations.
+        scored = [(c, s) for c, s in scored
+                  if s["gain"] > 0.5 * sse0 * (1 - math.exp(-(BIC_MARGIN + len(c.free) *
+                                                               math.log(n_samples)) /
+                                                             n_samples))]
         screen_time += time.perf_counter() - t0
         if not scored:
             break
