@@ -485,7 +485,7 @@ def main(argv: list[str] | None = None) -> int:
     print(f"{'circuitsim sum of rows wall':36} {sum(walls1):10.3f} {sum(walls2):12.3f}")
     for tmax, d in ng.items():
         print(f"{f'ngspice {tmax * 1e6:g} us rusage sum':36} {d['seq_rusage']:10.3f} "
-              f"{d['par_rusage']:12.3f}  (CPU, summed over processes)")
+              f"{d['par_rusage']:12.3f}  (summed over processes)")
         print(f"{f'ngspice {tmax * 1e6:g} us subprocess wall':36} {d['seq_wall']:10.3f} "
               f"{d['par_wall']:12.3f}")
 
