@@ -351,15 +351,15 @@ def diagnose(netlist, record, free: Sequence[str] = (), *, probes: Sequence[str]
     spread = np.array([max(float(np.std(record[p])), 1e-300) for p in probes])
     n_samples = record.t.size * len(probes)
 
-    def refit(model_, free_, params_, bounds_, staged=False):
+    def refit(model_, free_, params_, bounds_, staged=False, nfev=12):
         # a candidate starts from its score-test estimate, inside the right basin: one
         # waveform stage with a few iterations is enough (the declared fit is staged)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             bounds_ = {k: v for k, v in (bounds_ or {}).items() if k in free_}
             return fit_record(model_, record, free_, params=params_, bounds=bounds_ or None,
-                              probes=probes, rtol=rtol, staged=True,
-                              max_nfev=100 if staged else 10)
+                              probes=probes, rtol=rtol, staged=staged,
+                              max_nfev=100 if staged else nfev)
 
     fit0 = refit(model, list(free), dict(params or {}), {}, staged=True)
     clock["fit"] = time.perf_counter() - clock["start"]
@@ -471,6 +471,15 @@ def diagnose(netlist, record, free: Sequence[str] = (), *, probes: Sequence[str]
                                   f"explain this record almost equally well (BIC "
                                   f"{dbic:.1f} vs {dbic2:.1f}): the data cannot tell them "
                                   f"apart")
+        # the short refit decided; polish the accepted model with a full fit, from there
+        polish_bounds = {**state.bounds, **{n: (min(lo, f.params[n]), max(hi, f.params[n]))
+                                            for n, (_, lo, hi) in c.free.items()}}
+        try:
+            f = refit(s["model"], [*state.free, *c.free], dict(f.params), polish_bounds,
+                      nfev=40)
+            sse = _sse(f, probes, spread)
+        except CircuitsimError:
+            pass
         raw = c.apply(state.raw)
         chosen.append(c)
         alternatives.append([(c2, {n: f2.params[n] for n in c2.free})
