@@ -194,6 +194,7 @@ def analyse(model, record, fit_res, probes: Sequence[str]) -> dict[str, Any]:
                           "orders": label})
             if len(peaks) == 6:
                 break
+        peaks += _order_peaks(sim, speeds, t, r, peaks)
         q, pval = ljung_box(r)
         corr = {}
         for name, g in regressors.items():
@@ -215,6 +216,37 @@ def analyse(model, record, fit_res, probes: Sequence[str]) -> dict[str, Any]:
             "whiteness": {"ljung_box_q": q, "p_value": pval, "white": pval > 1e-3},
             "correlation": corr,
         }
+    return out
+
+
+def _order_peaks(sim, speeds, t, r, known) -> list[dict[str, Any]]:
+    """Peaks of the residual's spectrum in the shaft angle (order tracking): resampled on a
+    uniform angle grid, a harmonic of the angle is a line at its order even while the speed
+    changes, where the time spectrum smears it."""
+    out = []
+    for n in speeds:
+        phi = np.asarray(sim[f"{n}.phi"])
+        grow = np.diff(phi) > 0
+        if phi[-1] - phi[0] < 4 * math.pi or not np.all(grow):
+            continue
+        m = phi.size
+        grid = np.linspace(phi[0], phi[-1], m)
+        x = np.interp(grid, phi, r)
+        x = x - np.polyval(np.polyfit(grid, x, 1), grid)
+        win = 0.5 - 0.5 * np.cos(2 * math.pi * np.arange(m) / m)
+        amp = np.abs(np.fft.rfft(x * win)) * 2 / win.sum()
+        orders = np.fft.rfftfreq(m, (grid[1] - grid[0]) / (2 * math.pi))
+        floor = float(np.median(amp[1:])) if amp.size > 2 else 0.0
+        for k in np.argsort(amp)[::-1][:200]:
+            kk = round(orders[k])
+            if kk < 1 or abs(orders[k] - kk) > ORDER_TOL * kk or amp[k] < 8 * floor:
+                continue
+            if any(p["orders"].get(n) == kk for p in known + out):
+                continue
+            out.append({"frequency": float(kk * speeds[n] / (2 * math.pi)),
+                        "amplitude": float(amp[k]), "orders": {n: kk}, "domain": "angle"})
+            if len(out) == 4:
+                break
     return out
 
 
@@ -389,6 +421,8 @@ def diagnose(netlist, record, free: Sequence[str] = (), *, probes: Sequence[str]
         return np.concatenate([np.asarray(y[p]) / sp_ for p, sp_ in zip(probes, spread,
                                                                           strict=True)])
 
+    rotating = bool(model.meta.get("integrals")) and any(
+        d == "rotational" for d in model.meta.get("integrals", {}).values())
     measured_features = project(record)
     measured_wave = wave(record)
     while len(accepted) < max_effects:
@@ -399,6 +433,8 @@ def diagnose(netlist, record, free: Sequence[str] = (), *, probes: Sequence[str]
         # an EMF harmonic (a voltage); everything else is screened on the slow features.
         spaces = {False: (measured_features - project(state.fit.sim), project),
                   True: (measured_wave - wave(state.fit.sim), wave)}
+        if not rotating:  # no shaft angle: no phase to slide, the waveform is best
+            spaces[False] = spaces[True]
         t0 = time.perf_counter()
         cands = [c for c in effects.candidates(load_raw_netlist(state.raw),
                                                _orders(analysis))
