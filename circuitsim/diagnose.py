@@ -715,6 +715,9 @@ def add_cli(sub) -> None:
     d.add_argument("--report", help="diag.json")
     d.add_argument("--html", help="diag.html with plots")
     d.add_argument("--write-netlist", help="the netlist with the effects added")
+    d.add_argument("--time", default="time", help="name of the time column [s]")
+    d.add_argument("--inputs", default="", help="other columns of the CSV that are not "
+                   "probes (measured inputs, unused signals), comma-separated")
     d.add_argument("--max-effects", type=int, default=MAX_EFFECTS)
     d.add_argument("--quiet", action="store_true")
     d.set_defaults(func=cmd_diagnose)
@@ -730,7 +733,8 @@ def cmd_diagnose(args) -> int:
         warnings.simplefilter("ignore")
         model = compile_model(net)
     inputs = [t.label.split(":")[-1] for c in net.components for t in c.tables]
-    record = load_record(args.data, model.probe_names, inputs=inputs)
+    inputs += [s.strip() for s in args.inputs.split(",") if s.strip()]
+    record = load_record(args.data, model.probe_names, inputs=inputs, time=args.time)
     free = [s.strip() for s in args.free.split(",") if s.strip()]
     probes = [s.strip() for s in args.probes.split(",")] if args.probes else None
     say = None if args.quiet else (lambda m: print(f"  {m}", file=sys.stderr))
