@@ -186,6 +186,9 @@ def analyse(model, record, fit_res, probes: Sequence[str]) -> dict[str, Any]:
                 continue
             label = {}
             for n, sp in out["shafts"].items():
+                w = np.asarray(sim[f"{n}.w"])
+                if np.std(w) > 0.02 * abs(np.mean(w)):
+                    continue  # the speed changes: only the angle spectrum can name orders
                 ratio = f[k] / sp["frequency"] if sp["frequency"] > 0 else 0
                 kk = round(ratio)
                 if kk >= 1 and abs(ratio - kk) < ORDER_TOL * kk:
@@ -225,13 +228,19 @@ def _order_peaks(sim, speeds, t, r, known) -> list[dict[str, Any]]:
     changes, where the time spectrum smears it."""
     out = []
     for n in speeds:
-        phi = np.asarray(sim[f"{n}.phi"])
-        grow = np.diff(phi) > 0
-        if phi[-1] - phi[0] < 4 * math.pi or not np.all(grow):
+        phi_all = np.asarray(sim[f"{n}.phi"])
+        w = np.asarray(sim[f"{n}.w"])
+        # from the moment the shaft turns steadily forward (a start from rest is skipped)
+        moving = w > 0.1 * max(float(np.max(w)), 1e-300)
+        if not moving.any():
+            continue
+        first = int(np.argmax(moving))
+        phi, rr = phi_all[first:], r[first:]
+        if phi[-1] - phi[0] < 4 * math.pi or not np.all(np.diff(phi) > 0):
             continue
         m = phi.size
         grid = np.linspace(phi[0], phi[-1], m)
-        x = np.interp(grid, phi, r)
+        x = np.interp(grid, phi, rr)
         x = x - np.polyval(np.polyfit(grid, x, 1), grid)
         win = 0.5 - 0.5 * np.cos(2 * math.pi * np.arange(m) / m)
         amp = np.abs(np.fft.rfft(x * win)) * 2 / win.sum()
