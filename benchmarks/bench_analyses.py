@@ -14,28 +14,21 @@ from __future__ import annotations
 import os
 import sys
 import tempfile
-import time
 import warnings
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
+sys.path[:0] = [str(ROOT / "benchmarks"), str(ROOT / "tests")]
 I8_REF = 0.380644390
 FIG9 = {1e-9: 0.380641, 1e-8: 0.380637, 1e-7: 0.380599, 1e-6: 0.380221, 1e-5: 0.376479,
         1e-4: 0.342658, 1e-3: 0.179293, 1e-2: 0.030793, 1e-1: 0.0033134}
 
 
-def best_of(n, fn):
-    best, out = float("inf"), None
-    for _ in range(n):
-        t0 = time.perf_counter()
-        out = fn()
-        best = min(best, time.perf_counter() - t0)
-    return best, out
-
-
 def main() -> int:
     os.environ.setdefault("CIRCUITSIM_CACHE", tempfile.mkdtemp(prefix="bench-cache-"))
     warnings.simplefilter("ignore")
+    from common import best_of
+
     import circuitsim as cs
     from circuitsim.analyses import harmonic_response, periodic_steady_state
 

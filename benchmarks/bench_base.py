@@ -35,7 +35,6 @@ import cProfile
 import datetime
 import json
 import os
-import platform
 import pstats
 import re
 import shutil
@@ -44,7 +43,6 @@ import sys
 import tempfile
 import time
 import warnings
-from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -52,6 +50,8 @@ import numpy as np
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "tests"))
+
+from common import best_of, versions
 
 from ngspice import have_ngspice, kim_base_deck
 from reference import KIM_BASE, resample, simulate_kim_lsoda
@@ -70,16 +70,6 @@ TARGET_PROCESS = 2.0  # [s] whole process, warm cache
 CS_CANDIDATES = [(1e-6, 1e-9), (1e-6, 1e-10), (5e-7, 1e-9), (5e-7, 1e-10), (1e-7, 1e-9),
                  (1e-7, 1e-10)]
 LSODA_CANDIDATES = [1e-6, 5e-7, 2e-7, 1e-7, 5e-8, 2e-8, 1e-8]  # rtol, atol 1e-9
-
-
-def best_of(n: int, fn: Callable[[], Any]) -> tuple[float, Any]:
-    """Minimum wall time [s] of ``n`` calls of ``fn`` and the last return value."""
-    best, out = float("inf"), None
-    for _ in range(n):
-        t0 = time.perf_counter()
-        out = fn()
-        best = min(best, time.perf_counter() - t0)
-    return best, out
 
 
 def ripple(x_on_grid: np.ndarray) -> tuple[float, float]:
@@ -233,29 +223,6 @@ def profile_simulate(model, rtol: float, atol: float) -> dict[str, float]:
 # ---------------------------------------------------------------------------------------------
 # main
 # ---------------------------------------------------------------------------------------------
-
-
-def versions() -> dict[str, str]:
-    import scipy
-    import sksundae
-
-    out = {"python": platform.python_version(), "numpy": np.__version__,
-           "scipy": scipy.__version__, "scikit-sundae": sksundae.__version__,
-           "machine": f"{platform.machine()}, {os.cpu_count()} cores",
-           "cpu": platform.processor() or "?"}
-    try:
-        with open("/proc/cpuinfo", encoding="utf-8") as fh:
-            for line in fh:
-                if line.startswith("model name"):
-                    out["cpu"] = line.split(":", 1)[1].strip()
-                    break
-    except OSError:
-        pass
-    if have_ngspice():
-        v = subprocess.run(["ngspice", "-v"], capture_output=True, text=True, check=False)
-        m = re.search(r"ngspice-\S+", v.stdout)
-        out["ngspice"] = m.group(0) if m else "?"
-    return out
 
 
 def main(argv: list[str] | None = None) -> int:

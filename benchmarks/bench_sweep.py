@@ -50,7 +50,6 @@ import json
 import multiprocessing
 import os
 import pickle
-import platform
 import re
 import shutil
 import subprocess
@@ -66,6 +65,8 @@ import numpy as np
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "tests"))
+
+from common import versions
 
 from ngspice import have_ngspice, kim_base_deck, run_ngspice
 from reference import kim_base_ode, kim_initial_state
@@ -300,28 +301,6 @@ def overheads(lfs: list[float]) -> dict[str, Any]:
 # ---------------------------------------------------------------------------------------------
 # main
 # ---------------------------------------------------------------------------------------------
-
-
-def versions() -> dict[str, str]:
-    import scipy
-    import sksundae
-
-    out = {"python": platform.python_version(), "numpy": np.__version__,
-           "scipy": scipy.__version__, "scikit-sundae": sksundae.__version__,
-           "machine": f"{platform.machine()}, {os.cpu_count()} cores"}
-    try:
-        with open("/proc/cpuinfo", encoding="utf-8") as fh:
-            for line in fh:
-                if line.startswith("model name"):
-                    out["cpu"] = line.split(":", 1)[1].strip()
-                    break
-    except OSError:
-        pass
-    if have_ngspice():
-        v = subprocess.run(["ngspice", "-v"], capture_output=True, text=True, check=False)
-        m = re.search(r"ngspice-\S+", v.stdout)
-        out["ngspice"] = m.group(0) if m else "?"
-    return out
 
 
 def load() -> str:
