@@ -1,6 +1,6 @@
 """Issue #6 x #5: `diagnose` on a BLDC record whose netlist omits cogging.
 
-    python netlists/kapun2008/diagnose_cogging.py      # ~15 min on 2 cores
+    python netlists/kapun2008/diagnose_cogging.py      # ~18 min on 2 cores
 
 The "measured" record is the torque test of bldc.yaml (0.6 s from rest, 10 kHz, speed only,
 white noise 0.05 rad/s). The netlist under test is the same motor without its cogging
