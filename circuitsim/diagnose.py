@@ -623,6 +623,114 @@ def _revisit(state: _State, chosen, alternatives, accepted, base_raw, declared, 
     return state
 
 
+def diagnose_features(netlist, features, free: Sequence[str] = (), *,
+                      max_effects: int = MAX_EFFECTS, progress=None) -> Diagnosis:
+    """The diagnosis on features (steady values, harmonic amplitudes and frequencies).
+
+    A handful of numbers carries no spectrum and no whiteness: every candidate of the catalog
+    is refitted directly (``fit.fit_features``; effects invisible at their null value start
+    from their grid), and one is accepted when it lowers chi-square by more than
+    ``BIC_MARGIN`` + k ln n and by at least half; repeated greedily. Features need sigmas.
+    """
+    import time
+
+    from . import effects
+    from .fit import fit_features
+    from .netlist import Netlist, load
+
+    say = progress or (lambda msg: None)
+    start = time.perf_counter()
+    net = netlist if isinstance(netlist, Netlist) else load(netlist)
+    if any(f.sigma is None for f in features.features):
+        raise DiagnosisError(f"{features.path}: every feature needs a sigma for the "
+                             f"diagnosis (its chi-square decides)")
+    n = len(features.features)
+
+    def chi2(f) -> float:
+        return float(sum(v**2 for v in f.errors.values()))
+
+    def run(model, free_, params_, bounds_):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            return fit_features(model, features, free_, params=params_,
+                                bounds={k: v for k, v in bounds_.items() if k in free_} or None)
+
+    model = _compile(net.raw)
+    fit0 = run(model, list(free), {}, {})
+    raw, cur_free, params, bounds, fit = net.raw, list(free), dict(fit0.params), {}, fit0
+    accepted: list[Accepted] = []
+    rejected: list[dict[str, Any]] = []
+    indistinct: list[str] = []
+    tried: set[str] = set()
+    while len(accepted) < max_effects:
+        c0 = chi2(fit)
+        best = None
+        round_results: list[tuple[Any, float]] = []
+        for cand in effects.candidates(build_raw(raw)):
+            if cand.key in tried:
+                continue
+            m = _compile(cand.apply(raw))
+            b = {**bounds, **{k: (lo, hi) for k, (_, lo, hi) in cand.free.items()}}
+            starts = [{}]
+            if cand.grid:  # saturation: start from knee currents around the operating point
+                first = next(iter(cand.free))
+                starts = [{first: g} for g in (1e-3, 1e-2, 0.1, 1.0)]
+            for st in starts:
+                try:
+                    f = run(m, [*cur_free, *cand.free],
+                            {**params, **{k: v[0] for k, v in cand.free.items()}, **st}, b)
+                except CircuitsimError:
+                    continue
+                say(f"  {cand.key}: chi2 {c0:.4g} -> {chi2(f):.4g}")
+                round_results.append((cand, chi2(f)))
+                if best is None or chi2(f) < chi2(best[1]):
+                    best = (cand, f, b)
+        if best is None:
+            break
+        cand, f, b = best
+        tried.add(cand.key)
+        k = len(cand.free)
+        if not (c0 - chi2(f) > BIC_MARGIN + k * math.log(max(n, 2)) and chi2(f) < 0.5 * c0):
+            rejected.append({"effect": cand.effect, "target": cand.target,
+                             "chi2_before": c0, "chi2_after": chi2(f),
+                             "reason": "not significant"})
+            break
+        for other, x2 in round_results:
+            if other.key != cand.key and x2 - chi2(f) < BIC_MARGIN and \
+                    not any(other.effect in t and other.target in t for t in indistinct):
+                indistinct.append(f"{cand.effect} on {cand.target} and {other.effect} on "
+                                  f"{other.target} explain these features almost equally "
+                                  f"well (chi-square {chi2(f):.3g} vs {x2:.3g}): the data "
+                                  f"cannot tell them apart")
+        raw = cand.apply(raw)
+        cur_free += list(cand.free)
+        params, bounds, fit = dict(f.params), b, f
+        accepted.append(Accepted(
+            cand.effect, cand.target, {nm: f.estimate[nm] for nm in cand.free},
+            {nm: (f.stderr[nm] if math.isfinite(f.stderr[nm]) else None)
+             for nm in cand.free}, f.error,
+            {"what": cand.what, "chi2_before": c0, "chi2_after": chi2(f),
+             "predicted": dict(f.predicted)}))
+        say(f"accepted {cand.key}: chi2 {chi2(f):.4g}")
+    out = raw.copy()
+    for nm, v in fit.params.items():
+        if nm in out.params:
+            out.params[nm] = (repr(float(v)), out.params[nm][1])
+    left = chi2(fit)
+    remaining = {"structure": bool(left > n + 3 * math.sqrt(2 * n)), "chi2": left,
+                 "note": f"chi-square {left:.3g} for {n} features"}
+    return Diagnosis(fit0.error, fit.error, dict(fit0.errors), dict(fit.errors), accepted,
+                     indistinct, remaining, {"predicted": dict(fit0.predicted)},
+                     {"predicted": dict(fit.predicted)}, out, fit0, fit, None,
+                     {"total": time.perf_counter() - start}, rejected)
+
+
+def build_raw(raw):
+    from .netlist import build
+
+    return build(raw)
+
+
 def load_raw_netlist(raw):
     """Type a raw netlist (for candidate generation on the current, patched netlist)."""
     from .netlist import build
@@ -741,14 +849,23 @@ def cmd_diagnose(args) -> int:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         model = compile_model(net)
-    inputs = [t.label.split(":")[-1] for c in net.components for t in c.tables]
-    inputs += [s.strip() for s in args.inputs.split(",") if s.strip()]
-    record = load_record(args.data, model.probe_names, inputs=inputs, time=args.time)
     free = [s.strip() for s in args.free.split(",") if s.strip()]
-    probes = [s.strip() for s in args.probes.split(",")] if args.probes else None
     say = None if args.quiet else (lambda m: print(f"  {m}", file=sys.stderr))
-    diag = diagnose(net, record, free, probes=probes, max_effects=args.max_effects,
-                    progress=say)
+    if str(args.data).endswith((".yaml", ".yml")):
+        from .data import load_features
+
+        feats = load_features(args.data)
+        feats.check(model)
+        diag = diagnose_features(net, feats, free, max_effects=args.max_effects,
+                                 progress=say)
+        args.html = None if args.html is None else args.html
+    else:
+        inputs = [t.label.split(":")[-1] for c in net.components for t in c.tables]
+        inputs += [s.strip() for s in args.inputs.split(",") if s.strip()]
+        record = load_record(args.data, model.probe_names, inputs=inputs, time=args.time)
+        probes = [s.strip() for s in args.probes.split(",")] if args.probes else None
+        diag = diagnose(net, record, free, probes=probes, max_effects=args.max_effects,
+                        progress=say)
     print(diag.summary())
     for a in diag.effects:
         print(f"  + {a.effect} on {a.target}: " + ", ".join(
@@ -759,7 +876,9 @@ def cmd_diagnose(args) -> int:
     if args.report:
         _atomic_text(args.report, json.dumps(diag.as_dict(), indent=1))
         print(f"report: {args.report}")
-    if args.html:
+    if args.html and diag.record is None:
+        print("html: not written (a features diagnosis has no waveforms to plot)")
+    elif args.html:
         write_html(diag, args.html, f"diagnosis of {net.title}")
         print(f"html: {args.html}")
     if args.write_netlist:

@@ -324,7 +324,7 @@ def _uncertainty(J: np.ndarray, r: np.ndarray, space: _Space, z: np.ndarray,
     A = Jn.T @ Jn
     lam, V = np.linalg.eigh(A)
     lam_max = max(float(lam.max()), 1e-300)
-    cond = lam_max / max(float(lam.min()), 1e-300 * lam_max)
+    cond = lam_max / max(float(lam.min()), 1e-300 * lam_max, 1e-308)
     # a floored inverse keeps the near-null direction huge but finite, so the correlation
     # of two interchangeable parameters comes out as the trade-off it is (about -1)
     Ainv = (V / np.maximum(lam, 1e-14 * lam_max)) @ V.T
