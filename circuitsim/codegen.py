@@ -123,10 +123,12 @@ def generate(dae) -> tuple[str, dict[str, Any]]:
     """Source of the generated module and its metadata (JSON-serialisable)."""
     import sympy as sp
 
+    from .component import as_expr
+
     scalar, vector = _printers()
     ren = _names(dae)
     n = len(dae.states)
-    F = [sp.sympify(e).xreplace(ren) for e in dae.equations]
+    F = [as_expr(e).xreplace(ren) for e in dae.equations]
     Y = [ren[s] for s in dae.states]
     YP = [ren[s] for s in dae.yp]
     t = sp.Symbol("t")
@@ -140,16 +142,16 @@ def generate(dae) -> tuple[str, dict[str, Any]]:
     fy_entries = [(i, j, Fy[i, j]) for i in range(n) for j in range(n) if Fy[i, j] != 0]
     fyp_entries = [(i, j, Fyp[i, j]) for i in range(n) for j in range(n) if Fyp[i, j] != 0]
     names_out = list(dae.probes) + sorted(dae.exports)
-    obs = [sp.sympify(dae.probes[k] if k in dae.probes else dae.exports[k]).xreplace(ren)
+    obs = [as_expr(dae.probes[k] if k in dae.probes else dae.exports[k]).xreplace(ren)
            for k in names_out]
     init_syms = [s for s in dae.initial]
-    init_vals = [sp.sympify(dae.initial[s]).xreplace(ren) for s in init_syms]
+    init_vals = [as_expr(dae.initial[s]).xreplace(ren) for s in init_syms]
     # a key may be an expression (a capacitor's v = p.v - n.v): resolve eliminated symbols
-    init_exprs = [sp.sympify(s).xreplace(dict(dae.solved)).xreplace(ren) for s in init_syms]
+    init_exprs = [as_expr(s).xreplace(dict(dae.solved)).xreplace(ren) for s in init_syms]
 
     def body(name: str, args: str, exprs: list, targets: list[str], pre: list[str] = (),
              post: list[str] = (), vec: bool = False) -> list[str]:
-        used = {str(s) for e in exprs for s in sp.sympify(e).free_symbols}
+        used = {str(s) for e in exprs for s in as_expr(e).free_symbols}
         lines = [f"    def {name}({args}):"]
         if vec:
             lines += [f"        y{k} = Y[{k}]" for k in range(n) if f"y{k}" in used]
@@ -190,7 +192,7 @@ def generate(dae) -> tuple[str, dict[str, Any]]:
         "observed": names_out,
         "n_probes": len(dae.probes),
         "initial": [[str(s), state_index.get(s, -1),
-                     sorted(q.name for q in sp.sympify(dae.initial[s]).free_symbols)]
+                     sorted(q.name for q in as_expr(dae.initial[s]).free_symbols)]
                     for s in init_syms],
         "units": dict(dae.units),
         "breaks": [[b.kind, [[f, p.name] for f, p in b.fields]] for b in dae.breaks],

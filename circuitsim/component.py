@@ -340,6 +340,20 @@ class OneTFlange(Component):
         return []
 
 
+def as_expr(x: Any) -> sp.Basic:
+    """A sympy object from a sympy object or a Python number. Text is refused: a netlist is
+    data and never reaches sympy's parser (which evaluates strings)."""
+    if isinstance(x, sp.Basic):
+        return x
+    if isinstance(x, bool):
+        return sp.Integer(int(x))
+    if isinstance(x, int):
+        return sp.Integer(x)
+    if isinstance(x, float):
+        return sp.Float(x)
+    raise TypeError(f"expected a sympy expression or a number, got {type(x).__name__}")
+
+
 class Pmod(sp.Function):
     """Periodic time: x mod T in [0, T). Its derivative in x is 1 (corners are breakpoints)."""
 

@@ -27,6 +27,7 @@ from .component import (
     Signal,
     TableData,
     Waveform,
+    as_expr,
 )
 from .errors import NetlistError
 from .netlist import ComponentSpec, Netlist
@@ -93,7 +94,7 @@ class _Derivatives:
         return self.table[u]
 
     def __call__(self, e: sp.Expr) -> sp.Expr:
-        e = sp.sympify(e)
+        e = as_expr(e)
         known = self.unknowns | set(self.table.values())
         out = sp.diff(e, self.t)
         for s in e.free_symbols & known:
@@ -159,14 +160,14 @@ def assemble(net: Netlist) -> Dae:
         comp, scope = _instantiate(spec, t, der, new, potentials, flows, integral, params,
                                    breaks, tables, exports, units)
         for eq in [*comp.bind(scope), *comp.equations(scope)]:
-            equations.append(sp.sympify(eq))
+            equations.append(as_expr(eq))
             origins.append(f"{spec.name} ({spec.type})")
         stored = comp.energy(scope)
         if stored is not None:
-            exports[f"{spec.name}.energy"] = sp.sympify(stored)
+            exports[f"{spec.name}.energy"] = as_expr(stored)
             units[f"{spec.name}.energy"] = "J"
         for var, val in comp.initial(scope).items():
-            initial[var] = sp.sympify(val)
+            initial[var] = as_expr(val)
         for k, v in scope._exports.items():
             exports[f"{spec.name}.{k}"] = v
             for port in spec.cls.ports:

@@ -26,6 +26,7 @@ import networkx as nx
 import numpy as np
 import sympy as sp
 
+from .component import as_expr
 from .errors import SingularCircuitError
 from .mna import BreakSource, Dae, format_equations
 
@@ -270,7 +271,7 @@ def dummy_derivatives(sys: _System, B: list[int | None], nominal: Mapping[sp.Sym
 def _num(e: sp.Expr, nominal: Mapping[sp.Symbol, float]) -> float:
     """Value of a Jacobian entry at nominal parameters and a generic point of the unknowns
     (a fixed, name-derived value: the same choice in every process)."""
-    e = sp.sympify(e)
+    e = as_expr(e)
     vals = {s: nominal.get(s, 0.5 + 0.1 * (zlib.crc32(s.name.encode()) % 7))
             for s in e.free_symbols}
     try:
@@ -303,8 +304,8 @@ def reduce_index(dae: Dae, nominal: Mapping[sp.Symbol, float]) -> IndexOneDae:
     states = tuple(diff + alg)
     yp = tuple(sys.der_of(s) for s in states)
     resolve = dict(sys.solved)
-    exports = {k: sp.sympify(v).xreplace(resolve) for k, v in dae.exports.items()}
-    probes = {k: sp.sympify(v).xreplace(resolve) for k, v in dae.probes.items()}
+    exports = {k: as_expr(v).xreplace(resolve) for k, v in dae.exports.items()}
+    probes = {k: as_expr(v).xreplace(resolve) for k, v in dae.probes.items()}
     return IndexOneDae(dae.t, states, yp, len(diff), tuple(sys.eqs), tuple(sys.origins),
                        dae.params, resolve, exports, probes, dict(dae.initial), dae.tables,
                        dae.breaks, dae.units, tuple(sys.report), dae.integrals)
