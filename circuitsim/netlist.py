@@ -193,9 +193,11 @@ def _read_yaml(path: Path) -> Any:
                            SourceLoc(str(path))) from None
     except UnicodeDecodeError:
         raise NetlistError("the file is not UTF-8 text", SourceLoc(str(path))) from None
-    yaml = YAML(typ="rt")
+    # ruamel's round-trip parser builds only mappings, sequences and scalars (no Python
+    # objects from tags), and keeps the line of every node for the error messages
+    parser = YAML(typ="rt")
     try:
-        doc = yaml.load(text)
+        doc = parser.load(text)
     except MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
         what = (exc.problem or exc.context or "syntax error").strip()
