@@ -314,6 +314,22 @@ class OnePort(Component):
         return [x.p.i + x.n.i]
 
 
+class Converter(Component):
+    """Electromechanical two-port: pins p, n and a shaft flange. v = p.v - n.v, i enters at p
+    and leaves at n; w is the shaft speed and tau the torque into the converter's flange (the
+    shaft receives -tau)."""
+
+    ports = (Pin("p"), Pin("n"), Flange("shaft"))
+    branches = (Branch("p", "n", "X"), Branch("shaft", None, "X"))
+
+    def bind(self, x: Scope) -> list[sp.Expr]:
+        x.v = x.p.v - x.n.v
+        x.i = x.p.i
+        x.w = x.shaft.w
+        x.tau = x.shaft.tau
+        return [x.p.i + x.n.i]
+
+
 class OneFlange(Component):
     """One rotational flange acting against the fixed reference: w = shaft speed,
     tau = torque into the shaft flange."""

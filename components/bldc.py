@@ -19,6 +19,7 @@ import sympy as sp
 from circuitsim.component import (
     Branch,
     Component,
+    Converter,
     Expression,
     Flange,
     OnePort,
@@ -46,7 +47,7 @@ def emf_constant(phi, p, shift, i_r, harmonics):
 
 
 @register("phase_emf")
-class PhaseEMF(Component):
+class PhaseEMF(Converter):
     """Back-EMF of one phase, Fourier series in the electrical angle: v = K(phi) w, tau = -K i.
 
     K(phi) = i_r dL_ir/dphi with L_ir = sum_k [a_k cos(k(p phi - shift)) + b_k sin(...)]. The
@@ -65,19 +66,10 @@ class PhaseEMF(Component):
     shaft : rotational; tau is the torque into the EMF's flange (the shaft receives K i).
     """
 
-    ports = (Pin("p"), Pin("n"), Flange("shaft"))
-    branches = (Branch("p", "n", "X"), Branch("shaft", None, "X"))
     pp = Param("1", "pole pairs", positive=True, integer=True)
     shift = Param("rad", "electrical phase displacement", default=0.0)
     i_r = Param("A", "fictitious rotor current", default=1.0, positive=True)
     harmonics = RecordList("Fourier coefficients of L_ir in the electrical angle", FOURIER)
-
-    def bind(self, x):
-        x.v = x.p.v - x.n.v
-        x.i = x.p.i
-        x.w = x.shaft.w
-        x.tau = x.shaft.tau
-        return [x.p.i + x.n.i]
 
     def equations(self, x):
         k = emf_constant(x.shaft.phi, self.pp, self.shift, self.i_r, self.harmonics)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import sympy as sp
 
-from circuitsim.component import Branch, Component, Flange, Option, Param, Pin, RecordList, register
+from circuitsim.component import Converter, Option, Param, RecordList, register
 
 HARMONIC = {
     "order": Param("1", "harmonic order per shaft revolution", positive=True),
@@ -15,7 +15,7 @@ HARMONIC = {
 
 
 @register("emf", "BackEMF")
-class BackEMF(Component):
+class BackEMF(Converter):
     """Back-EMF coupling with ripple locked to the rotor angle phi (phi' = w).
 
     v = k_e w + e0 + sum_h (slope_h w + offset_h) sin(order_h phi + phase_h),
@@ -36,20 +36,11 @@ class BackEMF(Component):
     shaft : rotational; tau is the torque into the EMF's flange (the shaft receives -tau).
     """
 
-    ports = (Pin("p"), Pin("n"), Flange("shaft"))
-    branches = (Branch("p", "n", "X"), Branch("shaft", None, "X"))
     k_t = Param("N*m/A", "torque constant", positive=True)
     k_e = Param("V*s/rad", "back-EMF constant", default="k_t", positive=True)
     e0 = Param("V", "constant EMF offset", default=0.0)
     harmonics = RecordList("back-EMF ripple harmonics of the rotor angle", HARMONIC)
     ripple_torque = Option("harmonics also produce torque (energy-consistent)", True)
-
-    def bind(self, x):
-        x.v = x.p.v - x.n.v
-        x.i = x.p.i
-        x.w = x.shaft.w
-        x.tau = x.shaft.tau
-        return [x.p.i + x.n.i]
 
     def equations(self, x):
         phi = x.shaft.phi

@@ -231,3 +231,17 @@ def rlc_deck(R: float, L: float, C: float, V: float, t_stop: float, tmax: float)
         ".end",
     ]
     return "\n".join(lines) + "\n"
+
+
+def require_ngspice() -> None:
+    """In a test body: skip without ngspice, except on CI (env var CI set), where a missing
+    tool is a failure (called in the body, not a fixture, so CI reports FAILED, not ERROR)."""
+    import os
+
+    import pytest
+
+    if not have_ngspice():
+        msg = "ngspice missing: install the Debian package (apt-get install ngspice)"
+        if "CI" in os.environ:
+            pytest.fail(msg)
+        pytest.skip(msg)

@@ -15,7 +15,7 @@ from circuitsim.analyses import (
 from circuitsim.errors import SolverError
 
 from conftest import NETLISTS
-from ngspice import have_ngspice, run_ngspice
+from ngspice import require_ngspice, run_ngspice
 from reference import small_signal_i8
 
 BASE = NETLISTS / "kim2024" / "base.yaml"
@@ -128,10 +128,7 @@ NETWORKS = {
 @pytest.mark.ngspice
 @pytest.mark.parametrize("name", sorted(NETWORKS))
 def test_ac_against_ngspice(name, compile_text):
-    if not have_ngspice():
-        if __import__("os").environ.get("CI"):
-            pytest.fail("ngspice missing: install the Debian package")
-        pytest.skip("ngspice missing: install the Debian package")
+    require_ngspice()
     yaml_text, deck = NETWORKS[name]
     ng = run_ngspice(f"* {name}\n{deck}.ac dec 20 10 100k\n", ["vm(out)", "vp(out)"])
     f = ng["time"]  # the scale column: frequency

@@ -13,7 +13,6 @@ Runtime about 6 s (ngspice at 1 us max step over 0.3 s is most of it).
 from __future__ import annotations
 
 import functools
-import os
 import warnings
 from pathlib import Path
 
@@ -23,31 +22,18 @@ import pytest
 import circuitsim as cs
 from circuitsim.signal import harmonic
 
-from ngspice import KIM_VECTORS, RLC_VECTORS, have_ngspice, kim_base_deck, rlc_deck, run_ngspice
+from ngspice import KIM_VECTORS, RLC_VECTORS, kim_base_deck, require_ngspice, rlc_deck, run_ngspice
 from reference import resample, rlc_series_step
 
 pytestmark = pytest.mark.ngspice
 
 ROOT = Path(__file__).resolve().parent.parent
-MISSING = "ngspice missing: install the Debian package"
 
 #: Window and grid of the ripple extraction [s]: the last 0.05 s of a 0.3 s run, 2 us grid.
 T_STOP = 0.3
 T_WIN = 0.25
 GRID = np.linspace(T_WIN, T_STOP, 25_001)
 F8_GUESS = 825.7  # [Hz], 8th order at ~648.5 rad/s
-
-
-def _require_ngspice() -> None:
-    """Skip without ngspice, except on CI (env var CI set), where a missing tool is a failure.
-
-    Called in the test bodies (not in a fixture) so that on CI the tests report FAILED, not
-    a setup ERROR.
-    """
-    if not have_ngspice():
-        if "CI" in os.environ:
-            pytest.fail(MISSING)
-        pytest.skip(MISSING)
 
 
 def _compile(name: str):
@@ -79,7 +65,7 @@ RISE = 1e-9  # [s] rise time of the step source in rlc.yaml (the Step waveform d
 
 
 def test_rlc_matches_ngspice_within_ngspice_accuracy() -> None:
-    _require_ngspice()
+    require_ngspice()
     # The netlist's source ramps 0 -> 1 V over RISE; ngspice gets the same ramp (PWL). The
     # response to a ramp of length tau is the step response averaged over [t - tau, t], i.e.
     # s(t - tau/2) + tau^2/24 * s''. With |s''| = |i'|/C <= V/(L*C) = 1e8 V/s^2 the second
@@ -171,7 +157,7 @@ TOL_THETA = 1.25e-5  # [rad]
 
 
 def test_kim_steady_figures_match_ngspice() -> None:
-    _require_ngspice()
+    require_ngspice()
     kim_runs = _kim_runs()
     ng = _steady(GRID, kim_runs["ngspice"]["i"], kim_runs["ngspice"]["w"])
     cs_ = _steady(GRID, kim_runs["circuitsim"]["i"], kim_runs["circuitsim"]["w"])
@@ -185,7 +171,7 @@ def test_kim_steady_figures_match_ngspice() -> None:
 
 
 def test_kim_supply_current_waveform_matches_ngspice() -> None:
-    _require_ngspice()
+    require_ngspice()
     kim_runs = _kim_runs()
     last = GRID >= T_STOP - 5e-3  # the last 5 ms
     ng, csr = kim_runs["ngspice"], kim_runs["circuitsim"]
