@@ -263,29 +263,23 @@ def _observe_batch(model, lin: Linearization, Y: np.ndarray, YP: np.ndarray, p) 
 def _output_rows(model, lin: Linearization, out_index: int) -> tuple[np.ndarray, np.ndarray]:
     """d(output)/dy and d(output)/dy', averaged over the turn (central differences)."""
     n = len(lin.op.y)
-    cy, cyp = np.zeros(n), np.zeros(n)
+    # one batch of observer calls for every sample angle and every +-h column: for each
+    # angle, 2n columns perturb y (k-th +h, k-th -h, ...) and 2n perturb y'
+    hps = 1e-6 * (1 + np.abs(lin.op.yp))
+    eye = np.repeat(np.eye(n), 2, axis=1) * np.tile([1.0, -1.0], n)  # (n, 2n)
+    Ys, YPs, Hs = [], [], []
     for a in lin.samples:
         y0 = lin.states_at(a)
-        cols_y, cols_yp = [], []
         hs = 1e-6 * (1 + np.abs(y0))
-        hps = 1e-6 * (1 + np.abs(lin.op.yp))
-        for k in range(n):
-            for sgn in (1, -1):
-                yy = y0.copy()
-                yy[k] += sgn * hs[k]
-                cols_y.append((yy, lin.op.yp))
-                yp = lin.op.yp.copy()
-                yp[k] += sgn * hps[k]
-                cols_yp.append((y0, yp))
-        cols = cols_y + cols_yp
-        Y = np.column_stack([c[0] for c in cols])
-        YP = np.column_stack([c[1] for c in cols])
-        v = _observe_batch(model, lin, Y, YP, lin.p)[out_index]
-        dy = (v[0:2 * n:2] - v[1:2 * n:2]) / (2 * hs)
-        dyp = (v[2 * n::2] - v[2 * n + 1::2]) / (2 * hps)
-        cy += dy / len(lin.samples)
-        cyp += dyp / len(lin.samples)
-    return cy, cyp
+        Ys += [y0[:, None] + eye * hs[:, None], np.repeat(y0[:, None], 2 * n, axis=1)]
+        YPs += [np.repeat(lin.op.yp[:, None], 2 * n, axis=1),
+                lin.op.yp[:, None] + eye * hps[:, None]]
+        Hs.append(hs)
+    v = _observe_batch(model, lin, np.hstack(Ys), np.hstack(YPs), lin.p)[out_index]
+    v = v.reshape(len(lin.samples), 4 * n)
+    dy = (v[:, 0:2 * n:2] - v[:, 1:2 * n:2]) / (2 * np.array(Hs))
+    dyp = (v[:, 2 * n::2] - v[:, 2 * n + 1::2]) / (2 * hps)
+    return dy.mean(axis=0), dyp.mean(axis=0)
 
 
 @dataclass(frozen=True)
@@ -389,13 +383,13 @@ def harmonic_response(model, order: int, output: str,
     res = np.zeros(n)
     out = _output_index(model, output)
     ck = np.zeros(n, complex)
-    out_k = 0.0 + 0.0j
-    for a in lin.samples:
-        y = lin.states_at(a)
-        residual(0.0, y, lin.op.yp, res, lin.p)
-        w = np.exp(-1j * order * a) * 2 / len(lin.samples)
-        ck += res * w
-        out_k += _observe_batch(model, lin, y[:, None], lin.op.yp[:, None], lin.p)[out, 0] * w
+    Y = np.column_stack([lin.states_at(a) for a in lin.samples])
+    w = np.exp(-1j * order * np.asarray(lin.samples)) * 2 / len(lin.samples)
+    for j in range(Y.shape[1]):
+        residual(0.0, Y[:, j], lin.op.yp, res, lin.p)
+        ck += res * w[j]
+    YP = np.repeat(lin.op.yp[:, None], Y.shape[1], axis=1)
+    out_k = _observe_batch(model, lin, Y, YP, lin.p)[out] @ w
     speed = lin.op.yp[lin.angles[0]]
     omega = order * speed
     cy, cyp = _output_rows(model, lin, out)

@@ -472,12 +472,13 @@ def _same_dim(value_dim: Any, sigma_dim: Any, loc: SourceLoc, where: str) -> Non
 
 
 def load_data(path: str | Path, probes: Sequence[str] | None = None, *,
-              inputs: Sequence[str] = ()) -> Record | FeatureSet:
-    """A record (``.csv``) or a features file (``.yaml``/``.yml``), by extension."""
+              inputs: Sequence[str] = (), time: str = "time") -> Record | FeatureSet:
+    """A record (``.csv``, time column ``time`` [s]) or a features file (``.yaml``/``.yml``),
+    by extension."""
     suffix = Path(path).suffix.lower()
     if suffix in (".yaml", ".yml"):
         return load_features(path)
     if suffix in (".csv", ".txt", ""):
-        return load_record(path, probes, inputs=inputs)
+        return load_record(path, probes, inputs=inputs, time=time)
     raise DataError(f"data file '{path}': unknown kind '{suffix}'. Give a CSV record (.csv) "
                     f"or a features file (.yaml)", SourceLoc(str(path)))

@@ -90,8 +90,23 @@ class Diagnosis:
             "indistinct": self.indistinct, "remaining": self.remaining,
             "analysis_before": self.analysis_before, "analysis_after": self.analysis_after,
             "considered_not_accepted": self.rejected, "timings": self.timings,
+            "final_fit": self.final_parameters(),
             "summary": self.summary(),
         })
+
+    def final_parameters(self) -> dict[str, dict[str, float | None]]:
+        """Every free parameter of the final model (declared ones and those of the accepted
+        effects, refitted together): start, estimate and standard error [SI]. An effect's
+        ``parameters`` are its values when it was accepted; later effects move them.
+        ``before``: a declared parameter's estimate in the declared model (None for the
+        effects' parameters, which that model lacks)."""
+        fit = self.fit_after
+        if fit is None:
+            return {}
+        before = self.fit_before.estimate if self.fit_before is not None else {}
+        return {n: {"before": before.get(n), "estimate": fit.estimate[n],
+                    "stderr": fit.stderr[n] if math.isfinite(fit.stderr[n]) else None}
+                for n in fit.free}
 
     def summary(self) -> str:
         if not self.effects:
@@ -664,6 +679,8 @@ def diagnose_features(netlist, features, free: Sequence[str] = (), *,
     tried: set[str] = set()
     while len(accepted) < max_effects:
         c0 = chi2(fit)
+        if c0 <= n:
+            break  # already within the sigmas: nothing left a further effect could explain
         best = None
         round_results: list[tuple[Any, float]] = []
         for cand in effects.candidates(build_raw(raw)):
@@ -871,6 +888,12 @@ def cmd_diagnose(args) -> int:
         print(f"  + {a.effect} on {a.target}: " + ", ".join(
             f"{k} = {v:.5g}" + (f" +- {a.stderr[k]:.2g}" if a.stderr.get(k) else "")
             for k, v in a.parameters.items()) + f"  (error {a.error_after:.4g})")
+    final = diag.final_parameters()
+    if final:
+        print("final fit (all free parameters together):")
+        for n, v in final.items():
+            print(f"  {n} = {v['estimate']:.6g}" +
+                  (f" +- {v['stderr']:.2g}" if v["stderr"] is not None else ""))
     for s in diag.indistinct:
         print(f"  ! {s}")
     if args.report:

@@ -57,6 +57,9 @@ CORRELATION_LIMIT = 0.99
 CONDITION_LIMIT = 1e6
 # default box for a log-scaled parameter: a factor 1e4 either way of its start value
 LOG_SPAN = math.log(1e4)
+# RMS change of the normalised residual that a unit step of a zero-start parameter's scaled
+# coordinate should cause (see ``_calibrate``)
+CALIBRATION_TARGET = 0.1
 # penalty per residual when a simulation fails inside the fit (a normalised residual of a
 # sensible model is O(1)): the trust region shrinks away from the failing parameters
 FAILED_PENALTY = 1e2
@@ -248,10 +251,47 @@ def _space(model, free: Sequence[str], params: Mapping[str, float],
     return _Space(tuple(free), start, log, scale, lo, hi)
 
 
+def _calibrate(space: _Space, fun: Callable[[np.ndarray], np.ndarray], z0: np.ndarray,
+               r0: np.ndarray, bounds: Mapping[str, tuple[float, float]] | None) -> _Space:
+    """Rescale the parameters that start at zero so that a unit step in z moves the
+    normalised residual by CALIBRATION_TARGET (RMS).
+
+    A zero start has no magnitude to scale by, and a fixed SI unit is meaningless across
+    domains: 1 N is a large step for a friction force and a tiny one for a 1e4 N bound's
+    tenth. With a poor scale the finite-difference step of the fit (1e-5 in z) either drowns
+    in the simulation's own error -- the parameter then never moves -- or jumps out of the
+    linear range. One or two extra evaluations per such parameter fix it.
+    """
+    scale, lo, hi = space.scale.copy(), space.lo.copy(), space.hi.copy()
+    n = max(r0.size, 1)
+    for k in np.flatnonzero(~space.log & (space.start == 0.0)):
+        for _ in range(3):
+            # ``fun`` works in the caller's coordinates (the old scale): a unit step in the
+            # new ones is scale/old-scale there; step into the feasible side
+            step = np.zeros_like(z0)
+            step[k] = scale[k] / space.scale[k]
+            if z0[k] + step[k] > space.hi[k]:
+                step[k] = -step[k]
+            change = float(np.linalg.norm(fun(z0 + step) - r0)) / math.sqrt(n)
+            if not math.isfinite(change) or change <= 0.0:
+                break  # no effect: leave it (the uncertainty report says so)
+            ratio = CALIBRATION_TARGET / change
+            if 0.3 < ratio < 3.0:
+                break
+            # the response may be nonlinear: do not jump by more than 1e3 per try
+            scale[k] *= min(max(ratio, 1e-3), 1e3)
+        name = space.names[k]
+        if bounds and name in bounds:
+            a, b = sorted(float(v) for v in bounds[name])
+            lo[k], hi[k] = (a - space.start[k]) / scale[k], (b - space.start[k]) / scale[k]
+    return _Space(space.names, space.start, space.log, scale,
+                  np.minimum(lo, -1e-12), np.maximum(hi, 1e-12))
+
+
 # ------------------------------------------------------------------- least squares core
 
 def _least_squares(fun: Callable[[np.ndarray], np.ndarray], space: _Space, z0: np.ndarray,
-                   diff_step: float, max_nfev: int):
+                   diff_step: float | np.ndarray, max_nfev: int):
     """scipy's trust-region least squares in z, with forward differences of *absolute* step
     ``diff_step`` in z (a relative change of a log-scaled parameter).
 
@@ -262,6 +302,7 @@ def _least_squares(fun: Callable[[np.ndarray], np.ndarray], space: _Space, z0: n
     from scipy.optimize import least_squares
 
     last: dict[str, np.ndarray] = {}
+    steps = np.broadcast_to(np.asarray(diff_step, float), z0.shape)
 
     def f(z: np.ndarray) -> np.ndarray:
         r = fun(z)
@@ -272,25 +313,58 @@ def _least_squares(fun: Callable[[np.ndarray], np.ndarray], space: _Space, z0: n
         r0 = last["r"] if "z" in last and np.array_equal(last["z"], z) else fun(z)
         cols = []
         for k in range(z.size):
-            h = diff_step if z[k] + diff_step <= space.hi[k] else -diff_step
+            d = float(steps[k])
+            h = d if z[k] + d <= space.hi[k] else -d
             zz = z.copy()
             zz[k] += h
             cols.append((fun(zz) - r0) / h)
         return np.column_stack(cols)
 
-    z0 = np.clip(z0, space.lo + 1e-12, space.hi - 1e-12)
+    # a start on a bound (a friction force starting at 0 >= 0) is feasible but freezes the
+    # trust region: its affine scaling shrinks every step to the distance to the bound
+    margin = np.minimum(1e-2, 1e-2 * (space.hi - space.lo))
+    z0 = np.clip(z0, space.lo + margin, space.hi - margin)
     return least_squares(f, z0, jac=jac, bounds=(space.lo, space.hi), method="trf",
                          x_scale=1.0, xtol=1e-8, ftol=1e-8, gtol=1e-10, max_nfev=max_nfev)
 
 
-def _jacobian(fun: Callable[[np.ndarray], np.ndarray], z: np.ndarray, h: float) -> np.ndarray:
+def _difference_steps(fun: Callable[[np.ndarray], np.ndarray], z: np.ndarray, r0: np.ndarray,
+                      space: _Space) -> np.ndarray:
+    """Forward-difference step per parameter in z, sized to the simulation's own noise.
+
+    A simulated output carries the integrator's error, which jumps with its step pattern
+    whenever a parameter moves; how large it is depends on the model (a stiff position loop
+    turns a 1e-9 m position error into a millinewton of force). The noise is measured by a
+    parameter change too small to matter (1e-8 in z), the signal by a 1e-3 step, and each step
+    is set so that the noise is at most a tenth of the difference, within [1e-5, 1e-2]. A
+    smooth model keeps 1e-5: a ripple locked to the rotor angle turns nonlinear when the
+    speed moves by much more.
+    """
+    n = z.size
+    zz = z.copy()
+    zz[0] += 1e-8 if z[0] + 1e-8 <= space.hi[0] else -1e-8
+    noise = float(np.linalg.norm(fun(zz) - r0))
+    steps = np.full(n, 1e-5)
+    for k in range(n):
+        zz = z.copy()
+        h = 1e-3 if z[k] + 1e-3 <= space.hi[k] else -1e-3
+        zz[k] += h
+        slope = float(np.linalg.norm(fun(zz) - r0)) / abs(h)
+        if slope > 0:
+            steps[k] = min(max(10 * noise / slope, 1e-5), 1e-2)
+    return steps
+
+
+def _jacobian(fun: Callable[[np.ndarray], np.ndarray], z: np.ndarray,
+              h: float | np.ndarray) -> np.ndarray:
     """Central differences in z (z is a relative change for log-scaled parameters)."""
     cols = []
+    hs = np.broadcast_to(np.asarray(h, float), z.shape)
     for k in range(z.size):
         zp, zm = z.copy(), z.copy()
-        zp[k] += h
-        zm[k] -= h
-        cols.append((fun(zp) - fun(zm)) / (2 * h))
+        zp[k] += hs[k]
+        zm[k] -= hs[k]
+        cols.append((fun(zp) - fun(zm)) / (2 * hs[k]))
     return np.column_stack(cols) if cols else np.zeros((fun(z).size, 0))
 
 
@@ -301,6 +375,40 @@ class _Uncertainty:
     condition: float
     flagged: tuple[int, ...]
     warnings: tuple[str, ...]
+
+
+def _long_run_information(J: np.ndarray, r: np.ndarray) -> np.ndarray:
+    """Jᵀ R J for a residual r with stationary autocorrelation R (unit variance) [-].
+
+    A record's residual is rarely white: an effect the model lacks leaves a slow, correlated
+    error, and treating its samples as independent makes the standard errors too small by
+    the square root of its correlation time. The autocorrelation is estimated from r and
+    weighted with a Bartlett window (so the result stays positive semi-definite) out to the
+    lag of Andrews' (1991) AR(1) rule; for white noise the window is one or two samples and
+    this is JᵀJ.
+    """
+    m = r.size
+    rr = float(r @ r)
+    if m < 8 or rr == 0.0:
+        return J.T @ J
+    rho1 = float(np.clip(r[1:] @ r[:-1] / rr, -0.99, 0.99))
+    alpha = 4 * rho1**2 / ((1 - rho1) ** 2 * (1 + rho1) ** 2)
+    lags = int(min(1.1447 * (alpha * m) ** (1 / 3), m // 4))
+    if lags < 1:
+        return J.T @ J
+    size = 1 << int(2 * m - 1).bit_length()
+    fr = np.fft.rfft(r, size)
+    rho = np.fft.irfft(fr * np.conj(fr), size)[: lags + 1] / rr
+    w = (1 - np.arange(lags + 1) / (lags + 1)) * rho
+    fj = np.fft.rfft(J, size, axis=0)
+    n = J.shape[1]
+    out = np.empty((n, n))
+    for a in range(n):
+        # cross-correlations of column a with every column, lags 0..L
+        cc = np.fft.irfft(np.conj(fj[:, a:a + 1]) * fj, size, axis=0)[: lags + 1]
+        out[a] = w @ cc
+    # out[a, b] = sum_l w_l sum_t J[t, a] J[t + l, b]; add the negative lags
+    return out + out.T - w[0] * (J.T @ J)
 
 
 def _uncertainty(J: np.ndarray, r: np.ndarray, space: _Space, z: np.ndarray,
@@ -335,7 +443,7 @@ def _uncertainty(J: np.ndarray, r: np.ndarray, space: _Space, z: np.ndarray,
         for g in groups:
             mg = g.size
             s2 = float(r[g] @ r[g]) / max(mg - n * mg / m, 1.0)
-            B += s2 * (Jn[g].T @ Jn[g])
+            B += s2 * _long_run_information(Jn[g], r[g])
         # the sandwich squares the floored inverse and would wipe out a null direction;
         # there a scalar noise level keeps the trade-off visible
         if lam.min() > 1e-12 * lam_max:
@@ -494,6 +602,7 @@ def fit_features(model, features: FeatureSet, free: Sequence[str], *,
     if failures[0]:
         raise SolverError("the model's analyses fail at the start values; check them with "
                           "`circuitsim op NETLIST`")
+    space = _calibrate(space, fun, z0, r0, bounds)
     stages: list[Stage] = []
     if free:
         diff = 1e-6 if harmonic == "small-signal" else 1e-4
@@ -606,7 +715,8 @@ def fit_record(model, record: Record, free: Sequence[str], *,
     fits the phase-insensitive slow features (``smoothing_windows``, ``slow_features``) and
     the second refines on the full waveform from there; ``staged=False`` is the naive
     single-stage waveform fit (it falls into a local minimum when a ripple locked to the
-    rotor angle is misaligned, see the module docstring).
+    rotor angle is misaligned, see the module docstring). A model without a shaft angle has
+    no such ripple and is always fitted in one stage.
 
     Parameters
     ----------
@@ -672,17 +782,25 @@ def fit_record(model, record: Record, free: Sequence[str], *,
                                for y, d, s in zip(ys, slow_data, spread, strict=True)])
 
     z = np.zeros(len(free))
-    if simulate(z) is None:
+    r0 = full(z)
+    if failures[0]:
         raise SolverError("the simulation fails at the start values of the fit; run the "
                           "netlist with them (`circuitsim run`) and fix the start values")
+    if np.any(~space.log & (space.start == 0.0)):
+        space = _calibrate(space, full, z, r0, bounds)
+        failures[0] = 0
+    step = _difference_steps(full, z, r0, space) if free else np.zeros(0)
     stages: list[Stage] = []
     nfev = 0
     ok, msg = True, "nothing free: the residuals of the start values"
     if free:
-        plan = [("slow features", slow), ("waveform", full)] if staged else \
+        # without a shaft angle there is no ripple to slide out of phase: the waveform's own
+        # cost has no spurious minima from it, and the slow stage would only cost runs
+        rotating = "rotational" in model.meta.get("integrals", {}).values()
+        plan = [("slow features", slow), ("waveform", full)] if staged and rotating else \
             [("waveform", full)]
         for name, fun in plan:
-            sol = _least_squares(fun, space, z, 1e-5, max_nfev)
+            sol = _least_squares(fun, space, z, step, max_nfev)
             z = sol.x
             nfev += int(sol.nfev)
             ok, msg = bool(sol.status > 0), str(sol.message)
@@ -691,7 +809,7 @@ def fit_record(model, record: Record, free: Sequence[str], *,
     if failures[0] and simulate(z) is None:
         raise SolverError("the simulation fails at the fitted values; bound the parameters "
                           "(bounds=...) or start closer")
-    J = _jacobian(full, z, 1e-4) if free else np.zeros((r.size, 0))
+    J = _jacobian(full, z, 10 * step) if free else np.zeros((r.size, 0))
     groups = [np.arange(k * t.size, (k + 1) * t.size) for k in range(len(names))]
     unc = _uncertainty(J, r, space, z, groups, False)
     fitted = overrides(z)
@@ -777,6 +895,10 @@ def add_cli(sub) -> None:
                    help="record: skip the slow-feature stage (naive waveform fit)")
     f.add_argument("--harmonic", choices=("small-signal", "pss"), default="small-signal",
                    help="features: harmonic model (default small-signal; pss: exact, slower)")
+    f.add_argument("--time", default="time", help="record: name of the time column [s]")
+    f.add_argument("--inputs", default="", metavar="NAME,...",
+                   help="record: other columns that are not probes (measured inputs, ignored "
+                        "unless a table source reads them)")
     f.add_argument("--rtol", type=float, default=1e-8, help="record: integrator rtol")
     f.add_argument("--json", action="store_true", help="print the report as JSON")
     f.set_defaults(func=cmd_fit)
@@ -797,7 +919,8 @@ def cmd_fit(args) -> int:
         warnings.simplefilter("always")
         model = compile_model(net)
     inputs = [t.label.split(":", 1)[1] for c in net.components for t in c.tables]
-    data = load_data(args.data, model.probe_names, inputs=inputs)
+    inputs += _split(args.inputs)
+    data = load_data(args.data, model.probe_names, inputs=inputs, time=args.time)
     overrides = _parse_sets(model, args.set or [])
     free = _split(args.free)
     with warnings.catch_warnings(record=True) as fit_caught:
