@@ -808,14 +808,59 @@ def _figures(diag: Diagnosis, probes: Sequence[str]) -> dict[str, bytes]:
     return out
 
 
+def _feature_figure(diag: Diagnosis) -> bytes:
+    """Measured features (with their sigmas) against the model before and after, one panel
+    per feature (their units differ)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    before, after = diag.fit_before, diag.fit_after
+    labels = list(before.measured)
+    fig, axes = plt.subplots(1, len(labels), figsize=(3.2 * len(labels), 3.0), squeeze=False)
+    for ax, lab in zip(axes[0], labels, strict=True):
+        sigma = before.sigma.get(lab) or 0.0
+        ax.errorbar([0], [before.measured[lab]], yerr=[sigma], fmt="ko", capsize=4,
+                    label="measured")
+        ax.plot([1], [before.predicted[lab]], "o", label="model before")
+        ax.plot([2], [after.predicted[lab]], "s", label="model after")
+        ax.set_xticks([0, 1, 2], ["measured", "before", "after"], fontsize=8)
+        ax.set_title(lab, fontsize=8)
+        ax.grid(alpha=0.3)
+    axes[0, 0].legend(fontsize=7)
+    fig.tight_layout()
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=100)
+    plt.close(fig)
+    return buf.getvalue()
+
+
+def _png(data: bytes) -> str:
+    return f'<img src="data:image/png;base64,{base64.b64encode(data).decode()}">'
+
+
 def write_html(diag: Diagnosis, path: str, title: str = "circuitsim diagnosis") -> None:
-    probes = list(diag.errors_before)
-    figs = _figures(diag, probes)
+    """The report as one self-contained HTML page: summary, effects table, plots (measured
+    vs model before and after; for a record also the residual spectra)."""
+    if diag.record is not None:
+        figs = _figures(diag, list(diag.errors_before))
+        plots = (f"<h2>Measured and model</h2>{_png(figs['waveforms'])}"
+                 f"<h2>Residual spectra</h2>{_png(figs['spectra'])}")
+        crit = "&Delta;BIC"
+    else:
+        plots = f"<h2>Measured features and model</h2>{_png(_feature_figure(diag))}"
+        crit = "&chi;&sup2; after"
+
+    def evidence(a: Accepted) -> str:
+        e = a.evidence
+        return f"{e['delta_bic']:.1f}" if "delta_bic" in e else f"{e.get('chi2_after', 0):.3g}"
+
     rows = "".join(
         f"<tr><td>{i + 1}</td><td>{html.escape(a.effect)}</td><td>{html.escape(a.target)}</td>"
         f"<td>{html.escape(', '.join(f'{k} = {v:.5g}' for k, v in a.parameters.items()))}</td>"
         f"<td>{html.escape(', '.join(f'{k}: {v:.2g}' if v is not None else f'{k}: n/a' for k, v in a.stderr.items()))}</td>"
-        f"<td>{a.error_after:.4g}</td><td>{a.evidence['delta_bic']:.1f}</td></tr>"
+        f"<td>{a.error_after:.4g}</td><td>{evidence(a)}</td></tr>"
         for i, a in enumerate(diag.effects))
     body = f"""<!doctype html><html><head><meta charset="utf-8"><title>{html.escape(title)}</title>
 <style>body{{font-family:sans-serif;max-width:60em;margin:auto}}td,th{{padding:2px 8px}}</style>
@@ -823,10 +868,9 @@ def write_html(diag: Diagnosis, path: str, title: str = "circuitsim diagnosis") 
 <p>{html.escape(diag.summary())}</p>
 <p>Error (RMS over probes of NRMSE): before {diag.error_before:.5g}, after {diag.error_after:.5g}.</p>
 <table border="1"><tr><th>#</th><th>effect</th><th>target</th><th>parameters</th><th>stderr</th>
-<th>error after</th><th>&Delta;BIC</th></tr>{rows}</table>
+<th>error after</th><th>{crit}</th></tr>{rows}</table>
 <p>{'<br>'.join(html.escape(s) for s in diag.indistinct)}</p>
-<h2>Measured and model</h2><img src="data:image/png;base64,{base64.b64encode(figs['waveforms']).decode()}">
-<h2>Residual spectra</h2><img src="data:image/png;base64,{base64.b64encode(figs['spectra']).decode()}">
+{plots}
 </body></html>"""
     _atomic_text(path, body)
 
@@ -899,9 +943,7 @@ def cmd_diagnose(args) -> int:
     if args.report:
         _atomic_text(args.report, json.dumps(diag.as_dict(), indent=1))
         print(f"report: {args.report}")
-    if args.html and diag.record is None:
-        print("html: not written (a features diagnosis has no waveforms to plot)")
-    elif args.html:
+    if args.html:
         write_html(diag, args.html, f"diagnosis of {net.title}")
         print(f"html: {args.html}")
     if args.write_netlist:

@@ -70,3 +70,14 @@ def test_the_speed_effect_is_reported_with_its_equals(diagnosis):
     if first.effect != "inductor-saturation":
         assert any(first.effect in s for s in diagnosis.indistinct), diagnosis.indistinct
     assert math.isfinite(diagnosis.error_after) and diagnosis.error_after < 1.0
+
+
+def test_the_features_report_has_its_plot_and_final_fit(diagnosis, tmp_path):
+    from circuitsim.diagnose import write_html
+
+    out = tmp_path / "diag.html"
+    write_html(diagnosis, str(out))
+    text = out.read_text()
+    assert text.count("data:image/png;base64,") == 1  # the features panel
+    final = diagnosis.as_dict()["final_fit"]
+    assert set(final) == {n for a in diagnosis.effects for n in a.parameters}
