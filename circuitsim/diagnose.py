@@ -327,8 +327,13 @@ def _simulate(model, record, params, rtol):
 
 
 def _screen(cand, state: _State, record, probes, spread, e0: np.ndarray, rtol: float,
-            project) -> dict[str, Any] | None:
-    """Score test of one candidate: how much of the residual its sensitivity explains."""
+            project, noise: float = 0.0) -> dict[str, Any] | None:
+    """Score test of one candidate: how much of the residual its sensitivity explains.
+
+    ``noise``: the norm of the simulation's own error in the projected space; a candidate
+    whose sensitivity stays within a few times it, however large the step, acts on nothing
+    that is measured (a resistance in series with an ideal source's shunt) and is dropped --
+    its "gain" would be solver noise fitted to the residual."""
     model = _compile(cand.apply(state.raw))
     base = {**state.params, **{k: v[0] for k, v in cand.free.items()}}
     y0 = _simulate(model, record, base, rtol)
@@ -358,12 +363,15 @@ def _screen(cand, state: _State, record, probes, spread, e0: np.ndarray, rtol: f
                 return None
             col = (project(y) - project(y0)) / h
             size = float(np.linalg.norm(col * h))
-            if size < 1e-4 * math.sqrt(col.size) * 1e-3:
+            if size < max(1e-4 * math.sqrt(col.size) * 1e-3, 10 * noise):
                 h *= 100  # invisible above the solver's noise: a bigger step
             elif size > 0.3 * math.sqrt(col.size):
                 h /= 30  # far from linear: a smaller one
             else:
                 break
+        else:
+            if size < 10 * noise:
+                return None
         cols.append(col)
     S = np.column_stack(cols)
     coef, *_ = np.linalg.lstsq(S, e0, rcond=None)
@@ -460,6 +468,11 @@ def diagnose(netlist, record, free: Sequence[str] = (), *, probes: Sequence[str]
         if not rotating:  # no shaft angle: no phase to slide, the waveform is best
             spaces[False] = spaces[True]
         t0 = time.perf_counter()
+        # the simulation's own error: the same model at a slightly different tolerance
+        alt = _simulate(state.model, record, state.params, rtol * 1.5)
+        noise = {False: 0.0, True: 0.0} if alt is None else {
+            k: float(np.linalg.norm(fn(alt) - fn(state.fit.sim)))
+            for k, fn in ((False, spaces[False][1]), (True, spaces[True][1]))}
         cands = [c for c in effects.candidates(load_raw_netlist(state.raw),
                                                _orders(analysis))
                  if c.key not in tried and c.key not in {x.key for x in chosen}]
@@ -467,7 +480,8 @@ def diagnose(netlist, record, free: Sequence[str] = (), *, probes: Sequence[str]
         for c in cands:
             say(f"screening {c.key}")
             e0, space = spaces["order" in c.fixed]
-            s = _screen(c, state, record, probes, spread, e0, rtol, space)
+            s = _screen(c, state, record, probes, spread, e0, rtol, space,
+                        noise["order" in c.fixed])
             if s is not None and s["gain"] > 0:
                 # gains in the two spaces are compared as shares of their own residual
                 s["share"] = s["gain"] / float(e0 @ e0)
