@@ -509,8 +509,10 @@ def diagnose(netlist, record, free: Sequence[str] = (), *, probes: Sequence[str]
             params_c = {**state.params, **s["start"]}
             bounds_c = dict(state.bounds)
             for n, (_, lo, hi) in c.free.items():
-                v = params_c[n]
-                bounds_c[n] = (min(lo, v), max(hi, v))
+                # the score test's linear estimate may fall outside the physical range
+                # (a negative viscous coefficient): start on the edge instead
+                params_c[n] = min(max(params_c[n], lo), hi)
+                bounds_c[n] = (lo, hi)
             try:
                 f = refit(s["model"], free_c, params_c, bounds_c)
             except CircuitsimError as exc:
@@ -593,11 +595,7 @@ def diagnose(netlist, record, free: Sequence[str] = (), *, probes: Sequence[str]
                           ("; peaks at " + ", ".join(f"{pk['frequency']:.4g} Hz"
                                                      for pk in peaks[:3]) if peaks else ""))}
     clock_total = time.perf_counter() - clock["start"]
-    raw = state.raw.copy()
-    loc_free = {n: v for n, v in final.params.items()}
-    for n, v in loc_free.items():
-        if n in raw.params:
-            raw.params[n] = (repr(float(v)), raw.params[n][1])
+    raw = _with_values(state.raw, final.params)
     return Diagnosis(fit0.error, final.error, dict(fit0.errors), dict(final.errors), accepted,
                      indistinct, remaining, analysis0, analysis_after, raw, fit0, final, record,
                      {"fit_declared": clock["fit"], "screen": screen_time, "refit": refit_time,
@@ -653,7 +651,9 @@ def _revisit(state: _State, chosen, alternatives, accepted, base_raw, declared, 
 
 
 def diagnose_features(netlist, features, free: Sequence[str] = (), *,
-                      max_effects: int = MAX_EFFECTS, progress=None) -> Diagnosis:
+                      max_effects: int = MAX_EFFECTS,
+                      params: Mapping[str, float] | None = None,
+                      progress=None) -> Diagnosis:
     """The diagnosis on features (steady values, harmonic amplitudes and frequencies).
 
     A handful of numbers carries no spectrum and no whiteness: every candidate of the catalog
@@ -685,7 +685,7 @@ def diagnose_features(netlist, features, free: Sequence[str] = (), *,
                                 bounds={k: v for k, v in bounds_.items() if k in free_} or None)
 
     model = _compile(net.raw)
-    fit0 = run(model, list(free), {}, {})
+    fit0 = run(model, list(free), dict(params or {}), {})
     raw, cur_free, params, bounds, fit = net.raw, list(free), dict(fit0.params), {}, fit0
     accepted: list[Accepted] = []
     rejected: list[dict[str, Any]] = []
@@ -743,10 +743,7 @@ def diagnose_features(netlist, features, free: Sequence[str] = (), *,
             {"what": cand.what, "chi2_before": c0, "chi2_after": chi2(f),
              "predicted": dict(f.predicted)}))
         say(f"accepted {cand.key}: chi2 {chi2(f):.4g}")
-    out = raw.copy()
-    for nm, v in fit.params.items():
-        if nm in out.params:
-            out.params[nm] = (repr(float(v)), out.params[nm][1])
+    out = _with_values(raw, fit.params)
     left = chi2(fit)
     remaining = {"structure": bool(left > n + 3 * math.sqrt(2 * n)), "chi2": left,
                  "note": f"chi-square {left:.3g} for {n} features"}
@@ -754,6 +751,19 @@ def diagnose_features(netlist, features, free: Sequence[str] = (), *,
                      indistinct, remaining, {"predicted": dict(fit0.predicted)},
                      {"predicted": dict(fit.predicted)}, out, fit0, fit, None,
                      {"total": time.perf_counter() - start}, rejected)
+
+
+def _with_values(raw, params: Mapping[str, float]):
+    """A copy of the raw netlist with the fitted (and overridden) values written in:
+    netlist parameters by name, component parameters (``La.L``) in their component."""
+    out = raw.copy()
+    for name, v in params.items():
+        if name in out.params:
+            out.params[name] = (repr(float(v)), out.params[name][1])
+        elif "." in name:
+            comp, key = name.split(".", 1)
+            out.component_entry(comp)[key] = float(v)
+    return out
 
 
 def build_raw(raw):
@@ -911,6 +921,9 @@ def add_cli(sub) -> None:
     d.add_argument("--inputs", default="", help="other columns of the CSV that are not "
                    "probes (measured inputs, unused signals), comma-separated")
     d.add_argument("--max-effects", type=int, default=MAX_EFFECTS)
+    d.add_argument("--set", action="append", metavar="NAME=VALUE",
+                   help="override a parameter (units checked); for a declared free one, its "
+                        "start value. The written netlist carries the value")
     d.add_argument("--quiet", action="store_true")
     d.set_defaults(func=cmd_diagnose)
 
@@ -925,6 +938,9 @@ def cmd_diagnose(args) -> int:
         warnings.simplefilter("ignore")
         model = compile_model(net)
     free = [s.strip() for s in args.free.split(",") if s.strip()]
+    from .cli import _parse_sets
+
+    overrides = _parse_sets(model, args.set or [])
     say = None if args.quiet else (lambda m: print(f"  {m}", file=sys.stderr))
     if str(args.data).endswith((".yaml", ".yml")):
         from .data import load_features
@@ -932,7 +948,7 @@ def cmd_diagnose(args) -> int:
         feats = load_features(args.data)
         feats.check(model)
         diag = diagnose_features(net, feats, free, max_effects=args.max_effects,
-                                 progress=say)
+                                 params=overrides, progress=say)
         args.html = None if args.html is None else args.html
     else:
         inputs = [t.label.split(":")[-1] for c in net.components for t in c.tables]
@@ -940,7 +956,7 @@ def cmd_diagnose(args) -> int:
         record = load_record(args.data, model.probe_names, inputs=inputs, time=args.time)
         probes = [s.strip() for s in args.probes.split(",")] if args.probes else None
         diag = diagnose(net, record, free, probes=probes, max_effects=args.max_effects,
-                        progress=say)
+                        params=overrides, progress=say)
     print(diag.summary())
     for a in diag.effects:
         print(f"  + {a.effect} on {a.target}: " + ", ".join(

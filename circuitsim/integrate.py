@@ -81,7 +81,10 @@ def consistent_initial(model, t0: float, y: np.ndarray, p: tuple[float, ...],
     del scale
     # d/dt F = Ft + Fy y' + Fyp y'' = 0; unknowns: y' of algebraic, y'' of differential.
     Fy, Fyp, Ft = parts(t0, y, yp, p)
-    if nd < n:
+    # a derivative that does not exist at t0 (x**n/x at x = 0) leaves the algebraic y' at 0:
+    # they only seed the integrator, which corrects them on its first step
+    if nd < n and np.all(np.isfinite(Fy)) and np.all(np.isfinite(Fyp)) and \
+            np.all(np.isfinite(Ft)):
         A = np.hstack([Fyp[:, :nd], Fy[:, nd:]])
         rhs = -(Ft + Fy[:, :nd] @ yp[:nd])
         sol = np.linalg.lstsq(A, rhs, rcond=None)[0]

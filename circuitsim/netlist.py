@@ -406,8 +406,9 @@ def _order_params(raw: _Raw) -> dict[str, GlobalParam]:
         if not math.isfinite(val):
             raise ParameterError(f"parameter '{name}' evaluates to {val}", loc)
         env[name], dims[name] = val, dim
-        # An expression over unit-less names stays unknowable; a bare number is a wildcard.
-        if nodes[name].kind == "num":
+        # An expression over unit-less names stays unknowable; a bare number (also a signed
+        # one, or number arithmetic: '-0.91', '1/1000') is a wildcard.
+        if not _carries_units(nodes[name], dims):
             dim = None
         out[name] = GlobalParam(name, nodes[name], loc, dim, val)
     return out

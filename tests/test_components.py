@@ -269,3 +269,41 @@ def test_drifting_resistor(compile_text):
     """)
     res = model.simulate()
     np.testing.assert_allclose(res["i"], 10 / (5 * (1 + 0.1 * res.t)), rtol=1e-9)
+
+
+def test_a_signed_bare_number_parameter_is_taken_in_the_expected_unit(compile_text):
+    """'-0.9' in the parameters block is a bare number like '0.9' (diagnose writes fitted
+    cogging coefficients so); a cogging amplitude of -a equals a phase shift of pi."""
+    text = """
+        parameters: {a: '-0.002', b: 0.002}
+        components:
+          - {name: Jr, type: inertia, shaft: s, J: 1e-4, w0: 10}
+          - name: CG
+            type: cogging
+            shaft: s
+            harmonics: [{order: 3, amplitude: %s, phase: %s}]
+        probes: {w: s.w}
+        analysis: {stop: 0.5, rtol: 1e-10, atol: 1e-12}
+    """
+    neg = compile_text(text % ("a", "0")).simulate()
+    pos = compile_text(text % ("b", "3.141592653589793")).simulate()
+    np.testing.assert_allclose(neg["w"], pos["w"], rtol=1e-7, atol=1e-9)
+    assert np.ptp(neg["w"]) > 0.1  # the cogging acts
+
+
+def test_a_power_whose_derivative_is_singular_at_the_start_runs(compile_text):
+    """v = max(u, 0)^1.5 with u = t: its Jacobian has 0^0.5/0 at t = 0, which Python floats
+    raise on; the run must go through (not a traceback) and follow t^1.5."""
+    model = compile_text("""
+        parameters: {n: 1.5}
+        components:
+          - {name: U, type: V, p: u, n: gnd, V: {pwl: [[0, 0], [1, 1]]}}
+          - {name: Ru, type: R, p: u, n: gnd, R: 1}
+          - {name: B1, type: BV, p: a, n: gnd, expr: "max(u.v, 0)^n"}
+          - {name: R1, type: R, p: a, n: gnd, R: 1}
+        probes: {va: a.v}
+        analysis: {stop: 1, rtol: 1e-9, atol: 1e-12}
+    """)
+    res = model.simulate()
+    assert res.success
+    np.testing.assert_allclose(res["va"], res.t**1.5, rtol=1e-7, atol=1e-9)

@@ -81,3 +81,18 @@ def test_the_features_report_has_its_plot_and_final_fit(diagnosis, tmp_path):
     assert text.count("data:image/png;base64,") == 1  # the features panel
     final = diagnosis.as_dict()["final_fit"]
     assert set(final) == {n for a in diagnosis.effects for n in a.parameters}
+
+
+def test_set_overrides_reach_the_fit_and_the_written_netlist(tmp_path, capsys):
+    from circuitsim.cli import main
+
+    out = tmp_path / "fixed.yaml"
+    code = main(["diagnose", str(KIM / "case1.yaml"), str(KIM / "filter100mH_features.yaml"),
+                 "--set", "Lf.R=20 mohm", "--set", "Rf=0.01", "--max-effects", "0",
+                 "--write-netlist", str(out), "--quiet"])
+    assert code == 0
+    net = cs.load(out)
+    lf = next(c for c in net.components if c.name == "Lf")
+    assert lf.values["Lf.R"].node.value == pytest.approx(0.020)
+    assert net.global_values({})["Rf"] == pytest.approx(0.01)
+    capsys.readouterr()
