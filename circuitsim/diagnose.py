@@ -141,9 +141,12 @@ def noise_sigma(r: np.ndarray) -> float:
 
     Differencing removes smooth structure (a tone at 2 % of the sample rate keeps 0.2 % of
     its size after three differences) and multiplies white noise's variance by C(6, 3) = 20.
+    A tone near the Nyquist frequency is amplified instead (up to 64/20 in variance), so the
+    estimate is capped at the residual's own RMS: noise is a part of the residual.
     """
     d = np.diff(r, n=3)
-    return float(1.4826 * np.median(np.abs(d - np.median(d))) / math.sqrt(20))
+    est = float(1.4826 * np.median(np.abs(d - np.median(d))) / math.sqrt(20))
+    return min(est, float(np.sqrt(np.mean(np.square(r)))))
 
 
 def ljung_box(r: np.ndarray, lags: int = 20) -> tuple[float, float]:
@@ -584,7 +587,7 @@ def diagnose(netlist, record, free: Sequence[str] = (), *, probes: Sequence[str]
     final = state.fit
     analysis_after = analysis
     sse_end = _sse(final, probes, spread)
-    left = (sse_end - sigma2) / sse_end if sse_end > 0 else 0.0
+    left = max(sse_end - sigma2, 0.0) / sse_end if sse_end > 0 else 0.0
     white = all(pr["whiteness"]["white"] for pr in analysis_after["probes"].values())
     peaks = [pk for pr in analysis_after["probes"].values() for pk in pr["peaks"]]
     remaining = {"structure": bool(left > 0.2 or not white),

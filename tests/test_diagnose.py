@@ -151,3 +151,18 @@ def test_effect_outside_the_catalog_is_not_misattributed(tmp_path):
     assert any(abs(f - 50.0) < 1.0 for f in peaks)
     report = json.loads(json.dumps(d.as_dict()))
     assert report["effects"] == [] and report["error_before"] > 0
+
+
+def test_noise_floor_is_the_white_level_and_never_above_the_residual():
+    from circuitsim.diagnose import noise_sigma
+
+    rng = np.random.default_rng(5)
+    white = rng.normal(0.0, 0.3, 20000)
+    assert noise_sigma(white) == pytest.approx(0.3, rel=0.03)
+    # a slow tone is removed by the differences
+    t = np.arange(20000)
+    assert noise_sigma(white + np.sin(2 * np.pi * 0.002 * t)) == pytest.approx(0.3, rel=0.03)
+    # an (aliased) tone just below Nyquist is amplified by them: the floor is capped at the
+    # residual's RMS, so "above the noise" never goes negative
+    near_nyquist = 0.01 * rng.normal(size=t.size) + np.sin(np.pi * 0.94 * t)
+    assert noise_sigma(near_nyquist) <= np.sqrt(np.mean(near_nyquist**2))
