@@ -69,7 +69,7 @@ def operating_point(model, params: Mapping[str, float] | None = None, t: float =
     cols_y = [k for k in range(n) if k not in fixed_y]
     f, Fy, Fyp = averaged(y, yp)
     for it in range(max_iter):
-        if np.max(np.abs(f)) <= tol * (1 + np.max(np.abs(y))):
+        if np.max(np.abs(f), initial=0.0) <= tol * (1 + np.max(np.abs(y), initial=0.0)):
             return OperatingPoint(y, yp, names, it)
         A = np.hstack([Fy[:, cols_y], Fyp[:, free]])
         try:

@@ -15,7 +15,7 @@ import tempfile
 import warnings
 from pathlib import Path
 
-from .errors import CircuitsimError, ParameterError
+from .errors import CircuitsimError, ParameterError, SolverError
 
 
 def _parse_sets(model, items: list[str]) -> dict[str, float]:
@@ -302,6 +302,12 @@ def cmd_op(args) -> int:
     params = _parse_sets(model, args.set or [])
     op = operating_point(model, params)
     probes = probe_values(model, op, params)
+    bad = [k for k, v in probes.items() if not math.isfinite(v)]
+    if bad:
+        raise SolverError(f"operating point: probe '{bad[0]}' is {probes[bad[0]]}: its "
+                          f"expression has no real value at the operating point (a division "
+                          f"by zero, a negative number to a fractional power); guard it, e.g. "
+                          f"with max(..., small)")
     if args.json:
         print(json.dumps({"states": dict(zip(op.names, op.y.tolist(), strict=True)),
                           "rates": {n: float(r) for n, r in zip(op.names, op.yp, strict=True)

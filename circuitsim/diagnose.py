@@ -31,7 +31,7 @@ import os
 import sys
 import tempfile
 import warnings
-from collections.abc import Mapping, Sequence
+from collections.abc import Mapping, MutableMapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -696,8 +696,8 @@ def diagnose_features(netlist, features, free: Sequence[str] = (), *,
     tried: set[str] = set()
     while len(accepted) < max_effects:
         c0 = chi2(fit)
-        if c0 <= n:
-            break  # already within the sigmas: nothing left a further effect could explain
+        if c0 <= BIC_MARGIN + math.log(max(n, 2)):
+            break  # no effect could lower chi-square by what acceptance asks: stop here
         best = None
         round_results: list[tuple[Any, float]] = []
         for cand in effects.candidates(build_raw(raw)):
@@ -764,8 +764,20 @@ def _with_values(raw, params: Mapping[str, float]):
         if name in out.params:
             out.params[name] = (repr(float(v)), out.params[name][1])
         elif "." in name:
-            comp, key = name.split(".", 1)
-            out.component_entry(comp)[key] = float(v)
+            comp, *path = name.split(".")
+            node = out.component_entry(comp)
+            # a waveform field ('V1.V.v1') sits one level down, under the waveform's kind:
+            # V: {step: {v1: ...}}
+            for key in path[:-1]:
+                node = node[key]
+                if isinstance(node, Mapping) and key not in ("table",) and len(node) == 1 \
+                        and isinstance(next(iter(node.values())), Mapping):
+                    node = next(iter(node.values()))
+            if not isinstance(node, MutableMapping):
+                raise DiagnosisError(f"cannot write the value of {name} into the netlist "
+                                     f"(its entry is not a mapping); give it as a netlist "
+                                     f"parameter instead")
+            node[path[-1]] = float(v)
     return out
 
 

@@ -267,12 +267,18 @@ def _calibrate(space: _Space, fun: Callable[[np.ndarray], np.ndarray], z0: np.nd
     for k in np.flatnonzero(~space.log & (space.start == 0.0)):
         for _ in range(3):
             # ``fun`` works in the caller's coordinates (the old scale): a unit step in the
-            # new ones is scale/old-scale there; step into the feasible side
+            # new ones is scale/old-scale there; it stays inside the bounds
+            d = _inside(space, z0, k, float(scale[k] / space.scale[k]))
+            if d == 0.0:
+                break
             step = np.zeros_like(z0)
-            step[k] = scale[k] / space.scale[k]
-            if z0[k] + step[k] > space.hi[k]:
-                step[k] = -step[k]
-            change = float(np.linalg.norm(fun(z0 + step) - r0)) / math.sqrt(n)
+            step[k] = d
+            r = fun(z0 + step)
+            if _failed(r):
+                break  # the model fails there: keep the scale we have
+            # RMS change per unit of the new coordinate
+            change = float(np.linalg.norm(r - r0)) / math.sqrt(n) / \
+                (abs(d) * space.scale[k] / scale[k])
             if not math.isfinite(change) or change <= 0.0:
                 break  # no effect: leave it (the uncertainty report says so)
             ratio = CALIBRATION_TARGET / change
@@ -313,8 +319,7 @@ def _least_squares(fun: Callable[[np.ndarray], np.ndarray], space: _Space, z0: n
         r0 = last["r"] if "z" in last and np.array_equal(last["z"], z) else fun(z)
         cols = []
         for k in range(z.size):
-            d = float(steps[k])
-            h = d if z[k] + d <= space.hi[k] else -d
+            h = _inside(space, z, k, float(steps[k])) or float(steps[k])
             zz = z.copy()
             zz[k] += h
             cols.append((fun(zz) - r0) / h)
@@ -329,43 +334,107 @@ def _least_squares(fun: Callable[[np.ndarray], np.ndarray], space: _Space, z0: n
 
 
 def _difference_steps(fun: Callable[[np.ndarray], np.ndarray], z: np.ndarray, r0: np.ndarray,
-                      space: _Space) -> np.ndarray:
+                      space: _Space, noise: float) -> np.ndarray:
     """Forward-difference step per parameter in z, sized to the simulation's own noise.
 
     A simulated output carries the integrator's error, which jumps with its step pattern
     whenever a parameter moves; how large it is depends on the model (a stiff position loop
-    turns a 1e-9 m position error into a millinewton of force). The noise is measured by a
-    parameter change too small to matter (1e-8 in z), the signal by a 1e-3 step, and each step
-    is set so that the noise is at most a tenth of the difference, within [1e-5, 1e-2]. A
-    smooth model keeps 1e-5: a ripple locked to the rotor angle turns nonlinear when the
-    speed moves by much more.
+    turns a 1e-9 m position error into a millinewton of force). ``noise`` is its norm (the
+    caller measures it: the same run at another tolerance); the signal comes from a 1e-3 step,
+    and each step is set so that the noise is at most a tenth of the difference, within
+    [1e-5, 1e-2]. A smooth model keeps 1e-5: a ripple locked to the rotor angle turns
+    nonlinear when the speed moves by much more.
     """
     n = z.size
-    zz = z.copy()
-    zz[0] += 1e-8 if z[0] + 1e-8 <= space.hi[0] else -1e-8
-    noise = float(np.linalg.norm(fun(zz) - r0))
     steps = np.full(n, 1e-5)
     for k in range(n):
+        h = _inside(space, z, k, 1e-3)
+        if h == 0.0:
+            continue
         zz = z.copy()
-        h = 1e-3 if z[k] + 1e-3 <= space.hi[k] else -1e-3
         zz[k] += h
-        slope = float(np.linalg.norm(fun(zz) - r0)) / abs(h)
+        r = fun(zz)
+        if _failed(r):
+            continue
+        slope = float(np.linalg.norm(r - r0)) / abs(h)
         if slope > 0:
             steps[k] = min(max(10 * noise / slope, 1e-5), 1e-2)
     return steps
 
 
+def _failed(r: np.ndarray) -> bool:
+    """A residual vector that stands for a failed simulation (see FAILED_PENALTY)."""
+    return bool(r.size) and bool(np.all(r == FAILED_PENALTY))
+
+
+def _inside(space: _Space, z: np.ndarray, k: int, h: float) -> float:
+    """A step of size up to |h| along z_k that stays inside the box: forward if there is
+    room, else backward, shortened to the room there is (0.0: no room at all)."""
+    up, down = space.hi[k] - z[k], z[k] - space.lo[k]
+    if up >= h:
+        return h
+    if down >= h:
+        return -h
+    return max(up, -down, key=abs) * 0.5
+
+
 def _jacobian(fun: Callable[[np.ndarray], np.ndarray], z: np.ndarray,
-              h: float | np.ndarray) -> np.ndarray:
-    """Central differences in z (z is a relative change for log-scaled parameters)."""
-    cols = []
+              h: float | np.ndarray, space: _Space | None = None
+              ) -> tuple[np.ndarray, list[int]]:
+    """Central differences in z (z is a relative change for log-scaled parameters); one-sided
+    where a bound is closer than the step, and never outside the box: a parameter fitted onto
+    its bound (a friction of 0 >= 0) must not be evaluated at a forbidden value. Returns the
+    Jacobian and the columns whose every evaluation failed (those are zero)."""
     hs = np.broadcast_to(np.asarray(h, float), z.shape)
+    r0: np.ndarray | None = None
+    cols, bad = [], []
     for k in range(z.size):
-        zp, zm = z.copy(), z.copy()
-        zp[k] += hs[k]
-        zm[k] -= hs[k]
-        cols.append((fun(zp) - fun(zm)) / (2 * hs[k]))
-    return np.column_stack(cols) if cols else np.zeros((fun(z).size, 0))
+        hk = float(hs[k])
+        up = space.hi[k] - z[k] if space is not None else np.inf
+        down = z[k] - space.lo[k] if space is not None else np.inf
+        col = None
+        if up >= hk and down >= hk:
+            zp, zm = z.copy(), z.copy()
+            zp[k] += hk
+            zm[k] -= hk
+            rp, rm = fun(zp), fun(zm)
+            if not (_failed(rp) or _failed(rm)):
+                col = (rp - rm) / (2 * hk)
+        if col is None:
+            if r0 is None:
+                r0 = fun(z)
+            short = _inside(space, z, k, hk) if space is not None else 0.0
+            for d in (hk, -hk, short):
+                if d == 0.0 or (d > 0 and up < d) or (d < 0 and down < -d):
+                    continue
+                zz = z.copy()
+                zz[k] += d
+                r = fun(zz)
+                if not _failed(r):
+                    col = (r - r0) / d
+                    break
+        if col is None:
+            bad.append(k)
+            col = np.zeros(r0.size if r0 is not None else fun(z).size)
+        cols.append(col)
+    if not cols:
+        return np.zeros((fun(z).size, 0)), []
+    return np.column_stack(cols), bad
+
+
+def _unevaluated(unc: _Uncertainty, bad: list[int], space: _Space) -> _Uncertainty:
+    """No standard error where the model failed on both sides of the estimate."""
+    if not bad:
+        return unc
+    import dataclasses
+
+    stderr = unc.stderr.copy()
+    stderr[bad] = np.nan
+    msgs = tuple(f"{space.names[k]}: the model fails on both sides of its estimate, so its "
+                 f"sensitivity (and standard error) could not be evaluated; check the "
+                 f"fitted values with `circuitsim run --set`" for k in bad)
+    return dataclasses.replace(unc, stderr=stderr, flagged=tuple(sorted({*unc.flagged, *bad})),
+                               warnings=unc.warnings + msgs)
 
 
 @dataclass(frozen=True)
@@ -613,8 +682,8 @@ def fit_features(model, features: FeatureSet, free: Sequence[str], *,
         z, nfev, ok, msg = z0, 1, True, "nothing free: the residuals of the start values"
     r = fun(z) if free else r0
     h = 1e-5 if harmonic == "small-signal" else 1e-3
-    J = _jacobian(fun, z, h) if free else np.zeros((vals.size, 0))
-    unc = _uncertainty(J, r, space, z, None, absolute)
+    J, bad = _jacobian(fun, z, h, space) if free else (np.zeros((vals.size, 0)), [])
+    unc = _unevaluated(_uncertainty(J, r, space, z, None, absolute), bad, space)
     fitted = overrides(z)
     pred = predict_features(model, features, fitted, harmonic)
     labels = _labels(features)
@@ -789,7 +858,16 @@ def fit_record(model, record: Record, free: Sequence[str], *,
     if np.any(~space.log & (space.start == 0.0)):
         space = _calibrate(space, full, z, r0, bounds)
         failures[0] = 0
-    step = _difference_steps(full, z, r0, space) if free else np.zeros(0)
+    if free:
+        # the simulation's own noise: the same run at another tolerance
+        alt = model.simulate(stop=float(t[-1]), params=overrides(z), t_eval=t,
+                             rtol=rtol * 1.5, atol=atol)
+        noise = float(np.linalg.norm(np.concatenate(
+            [(alt[p] - x) / s for p, x, s in zip(names, data, spread, strict=True)]) - r0)) \
+            if alt.success and alt.t.size == t.size else 0.0
+        step = _difference_steps(full, z, r0, space, noise)
+    else:
+        step = np.zeros(0)
     stages: list[Stage] = []
     nfev = 0
     ok, msg = True, "nothing free: the residuals of the start values"
@@ -809,9 +887,9 @@ def fit_record(model, record: Record, free: Sequence[str], *,
     if failures[0] and simulate(z) is None:
         raise SolverError("the simulation fails at the fitted values; bound the parameters "
                           "(bounds=...) or start closer")
-    J = _jacobian(full, z, 10 * step) if free else np.zeros((r.size, 0))
+    J, bad = _jacobian(full, z, 10 * step, space) if free else (np.zeros((r.size, 0)), [])
     groups = [np.arange(k * t.size, (k + 1) * t.size) for k in range(len(names))]
-    unc = _uncertainty(J, r, space, z, groups, False)
+    unc = _unevaluated(_uncertainty(J, r, space, z, groups, False), bad, space)
     fitted = overrides(z)
     sim = simulate(z)
     residuals = {p: x - sim[p] for p, x in zip(names, data, strict=True)}

@@ -203,7 +203,7 @@ def simulate(model, stop: float | None = None, params: Mapping[str, float] | Non
     n = len(model.state_names)
     if n == 0:  # every unknown was eliminated: the outputs are explicit functions of t
         empty = np.zeros((0, t_eval.size))
-        return SimResult(t_eval, empty, empty, (), Status.OK, "", 0, 0, model, p)
+        return _finite(SimResult(t_eval, empty, empty, (), Status.OK, "", 0, 0, model, p))
     overridden = frozenset(params or {})
     y0, _ = initial_state(model, 0.0, p, overridden)
     if init == "op":
@@ -212,14 +212,14 @@ def simulate(model, stop: float | None = None, params: Mapping[str, float] | Non
         try:
             y0 = operating_point(model, params).y
         except SolverError as exc:
-            return SimResult(t_eval[:1], np.zeros((n, 0)), np.zeros((n, 0)),
+            return SimResult(t_eval[:0], np.zeros((n, 0)), np.zeros((n, 0)),
                              model.state_names, Status.INIT_FAILED, exc.bare, 0, 0, model, p)
     elif init != "rest":
         raise SolverError(f"init must be 'rest' or 'op', not {init!r}")
     try:
         y0, yp0 = consistent_initial(model, 0.0, y0, p)
     except SolverError as exc:
-        return SimResult(t_eval[:1], np.zeros((n, 0)), np.zeros((n, 0)), model.state_names,
+        return SimResult(t_eval[:0], np.zeros((n, 0)), np.zeros((n, 0)), model.state_names,
                          Status.INIT_FAILED, exc.bare, 0, 0, model, p)
     if init == "rest":
         ignored = check_initial(model, 0.0, y0, yp0, p, overridden)
@@ -305,8 +305,28 @@ def simulate(model, stop: float | None = None, params: Mapping[str, float] | Non
     t_all = np.concatenate(ts) if ts else np.zeros(0)
     y_all = np.concatenate(ys).T if ys else np.zeros((n, 0))
     yp_all = np.concatenate(yps).T if yps else np.zeros((n, 0))
-    return SimResult(t_all, y_all, yp_all, model.state_names, status, detail, nfev, njev,
-                     model, p)
+    return _finite(SimResult(t_all, y_all, yp_all, model.state_names, status, detail, nfev,
+                             njev, model, p))
+
+
+def _finite(res: SimResult) -> SimResult:
+    """A run whose probes are NaN or infinite has not succeeded, whatever the integrator says
+    (a probe dividing by a quantity that is zero, a negative number to a fractional power in
+    a probe that no equation uses): mark it, naming the probe and when it went bad."""
+    if not res.success or not res.t.size:
+        return res
+    for name in res.model.probe_names:
+        x = res[name]
+        bad = ~np.isfinite(x)
+        if bad.any():
+            k = int(np.argmax(bad))
+            res.status = Status.NOT_FINITE
+            res.detail = (f"probe '{name}' is {x[k]} from t = {res.t[k]:.6g} s: its expression "
+                          f"has no real value there (a division by zero, a negative number to "
+                          f"a fractional power, the log or square root of a negative number); "
+                          f"guard it, e.g. with max(..., small)")
+            break
+    return res
 
 
 def _failure(model, sol, t_fail: float, rtol: float, atol: float) -> str:

@@ -405,11 +405,12 @@ def _order_params(raw: _Raw) -> dict[str, GlobalParam]:
             raise ParameterError(f"parameter '{name}': {exc}", loc) from None
         if not math.isfinite(val):
             raise ParameterError(f"parameter '{name}' evaluates to {val}", loc)
-        env[name], dims[name] = val, dim
         # An expression over unit-less names stays unknowable; a bare number (also a signed
-        # one, or number arithmetic: '-0.91', '1/1000') is a wildcard.
+        # one, or number arithmetic: '-0.91', '1/1000') is a wildcard, and so is a parameter
+        # computed from wildcards only ('b: a' with 'a: -0.91')
         if not _carries_units(nodes[name], dims):
             dim = None
+        env[name], dims[name] = val, dim
         out[name] = GlobalParam(name, nodes[name], loc, dim, val)
     return out
 

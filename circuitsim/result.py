@@ -20,6 +20,7 @@ class Status(Enum):
     OK = (0, "reached the stop time")
     SOLVER_FAILED = (-1, "the integrator failed")
     INIT_FAILED = (-2, "no consistent initial values were found")
+    NOT_FINITE = (-3, "a probe is not a finite number")
 
     @property
     def ok(self) -> bool:

@@ -92,3 +92,22 @@ def test_console_script_entry_point(tmp_path):
                           timeout=120, check=False)
     assert proc.returncode == 0, proc.stderr
     assert json.loads(proc.stdout)["probes"]["v_c"]["mean"] == pytest.approx(1.0, abs=1e-3)
+
+
+def test_a_probe_without_a_real_value_is_an_error_not_a_nan(write_netlist, capsys):
+    """(-1 V)^1.5 has no real value: run and op must fail naming the probe (exit 1), not
+    print nan with exit 0 or a traceback."""
+    from circuitsim.cli import main
+
+    path = write_netlist("""
+        title: sq
+        components:
+          - {name: V1, type: V, p: b, n: gnd, V: -1}
+          - {name: B1, type: BI, p: b, n: gnd, expr: "1e-4*(b.v)^1.5"}
+        probes: {i: B1.i}
+        analysis: {stop: 1e-3}
+    """)
+    assert main(["run", str(path), "--no-files"]) == 1
+    assert "probe 'i' is nan" in capsys.readouterr().err
+    assert main(["op", str(path)]) == 1
+    assert "probe 'i' is nan" in capsys.readouterr().err

@@ -343,3 +343,26 @@ def test_long_run_information_matches_the_ar1_closed_form():
     lrv = _long_run_information(ones, x)[0, 0] / m
     # Bartlett window at Andrews' lag (~300 here): biased low by ~2 sum(l rho_l) / L ~ 3 %
     assert lrv == pytest.approx((1 + phi) / (1 - phi), rel=0.08)
+
+
+def test_jacobian_stays_inside_the_bounds_and_reports_failures():
+    """At an estimate on its bound (a friction of 0 >= 0) the difference must be one-sided:
+    the model fails outside, and a failed evaluation must not become a derivative."""
+    from circuitsim.fit import FAILED_PENALTY, _jacobian, _Space
+
+    def fun(z):
+        if z[0] < 0:
+            return np.full(2, FAILED_PENALTY)
+        return np.array([z[0] ** 2, 3 * z[0] + z[1]])
+
+    space = _Space(("a", "b"), np.zeros(2), np.zeros(2, bool), np.ones(2),
+                   np.array([0.0, -np.inf]), np.array([np.inf, np.inf]))
+    J, bad = _jacobian(fun, np.zeros(2), 1e-4, space)
+    assert bad == []
+    np.testing.assert_allclose(J, [[1e-4, 0.0], [3.0, 1.0]], atol=1e-12)
+
+    def broken(z):
+        return np.full(2, FAILED_PENALTY) if z[0] != 0 else np.zeros(2)
+
+    J, bad = _jacobian(broken, np.zeros(2), 1e-4, space)
+    assert bad == [0] and not J[:, 0].any()
