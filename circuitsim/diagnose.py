@@ -506,7 +506,17 @@ def diagnose(netlist, record, free: Sequence[str] = (), *, probes: Sequence[str]
         t0 = time.perf_counter()
         best = None
         results = []
-        for c, s in scored[:screen_top]:
+        top_set = scored[:screen_top]
+        # neighbouring orders of one harmonic effect score alike when the speed changes
+        # through the record (order 35 fits a drifting order-36 ripple almost as well): the
+        # linear screen cannot rank such near-ties, so the refit gets all of them
+        for c, s in scored[screen_top:]:
+            if "order" in c.fixed and any(
+                    c2.effect == c.effect and c2.target == c.target and "order" in c2.fixed
+                    and abs(c2.fixed["order"] - c.fixed["order"]) <= 1
+                    and s["share"] >= 0.8 * s2["share"] for c2, s2 in top_set):
+                top_set.append((c, s))
+        for c, s in top_set:
             say(f"refitting {c.key}")
             free_c = [*state.free, *c.free]
             params_c = {**state.params, **s["start"]}
