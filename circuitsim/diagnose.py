@@ -827,11 +827,7 @@ def _figures(diag: Diagnosis, probes: Sequence[str]) -> dict[str, bytes]:
         ax.legend(fontsize=7)
         ax.grid(alpha=0.3)
     axes[-1, 0].set_xlabel("time [s]")
-    fig.tight_layout()
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=100)
-    plt.close(fig)
-    out["waveforms"] = buf.getvalue()
+    out["waveforms"] = _png_bytes(fig)
     fig, axes = plt.subplots(len(probes), 1, figsize=(8, 2.6 * len(probes)), squeeze=False)
     shafts = diag.analysis_before.get("shafts", {})
     for ax, p in zip(axes[:, 0], probes, strict=True):
@@ -849,11 +845,7 @@ def _figures(diag: Diagnosis, probes: Sequence[str]) -> dict[str, bytes]:
             ax.set_title("orders of " + ", ".join(f"{n} ({v['frequency']:.4g} Hz)"
                                                   for n, v in shafts.items()), fontsize=8)
     axes[-1, 0].set_xlabel("frequency [Hz]")
-    fig.tight_layout()
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=100)
-    plt.close(fig)
-    out["spectra"] = buf.getvalue()
+    out["spectra"] = _png_bytes(fig)
     return out
 
 
@@ -878,6 +870,13 @@ def _feature_figure(diag: Diagnosis) -> bytes:
         ax.set_title(lab, fontsize=8)
         ax.grid(alpha=0.3)
     axes[0, 0].legend(fontsize=7)
+    return _png_bytes(fig)
+
+
+def _png_bytes(fig) -> bytes:
+    """The figure as PNG bytes (for embedding); the figure is closed."""
+    import matplotlib.pyplot as plt
+
     fig.tight_layout()
     buf = io.BytesIO()
     fig.savefig(buf, format="png", dpi=100)

@@ -166,3 +166,32 @@ def test_noise_floor_is_the_white_level_and_never_above_the_residual():
     # residual's RMS, so "above the noise" never goes negative
     near_nyquist = 0.01 * rng.normal(size=t.size) + np.sin(np.pi * 0.94 * t)
     assert noise_sigma(near_nyquist) <= np.sqrt(np.mean(near_nyquist**2))
+
+
+def test_cli_report_html_and_written_netlist_reproduce_the_diagnosis(tmp_path, capsys):
+    """`circuitsim diagnose` on a CSV: diag.json has the required fields, the HTML has both
+    plots, and the written netlist, simulated on the record's grid, gives the reported error."""
+    from circuitsim.cli import main
+
+    rec = make_record([("coulomb-friction", "rotor", None, [5e-4])], seed=4)
+    csv = tmp_path / "rec.csv"
+    cols = ["speed", "i"]
+    np.savetxt(csv, np.column_stack([rec.t] + [rec[c] for c in cols]), delimiter=",",
+               header=",".join(["time", *cols]), comments="")
+    report, page, fixed = tmp_path / "d.json", tmp_path / "d.html", tmp_path / "fixed.yaml"
+    assert main(["diagnose", str(MOTOR), str(csv), "--report", str(report), "--html",
+                 str(page), "--write-netlist", str(fixed), "--quiet"]) == 0
+    capsys.readouterr()
+    d = json.loads(report.read_text())
+    for key in ("error_before", "error_after", "errors", "effects"):
+        assert key in d
+    assert d["effects"] and {"effect", "target", "parameters", "stderr", "error_after",
+                             "evidence"} <= set(d["effects"][0])
+    assert page.read_text().count("data:image/png;base64,") == 2
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        model = cs.compile(cs.load(fixed))
+    sim = model.simulate(stop=float(rec.t[-1]), t_eval=rec.t, rtol=1e-8)
+    nrmse = [np.sqrt(np.mean((rec[c] - sim[c]) ** 2)) / np.std(rec[c]) for c in cols]
+    assert float(np.sqrt(np.mean(np.square(nrmse)))) == pytest.approx(d["error_after"],
+                                                                      rel=1e-3)
