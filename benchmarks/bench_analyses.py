@@ -30,7 +30,8 @@ def main() -> int:
     from common import best_of
 
     import circuitsim as cs
-    from circuitsim.analyses import harmonic_response, periodic_steady_state
+    from circuitsim.solve.ac import harmonic_response
+    from circuitsim.solve.pss import periodic_steady_state
 
     base = cs.compile(cs.load(ROOT / "netlists" / "kim2024" / "base.yaml"))
     case1 = cs.compile(cs.load(ROOT / "netlists" / "kim2024" / "case1.yaml"))

@@ -27,9 +27,9 @@ def main() -> int:
     os.environ.setdefault("CIRCUITSIM_CACHE", tempfile.mkdtemp(prefix="bench-cache-"))
     warnings.simplefilter("ignore")
     import circuitsim as cs
-    from circuitsim import effects
-    from circuitsim.data import Record
-    from circuitsim.diagnose import diagnose
+    from circuitsim.loop import effects
+    from circuitsim.loop.diagnose import diagnose
+    from circuitsim.loop.record import Record
     from circuitsim.netlist import build
 
     net = cs.load(ROOT / "netlists" / "kim2024" / "base.yaml")

@@ -208,7 +208,7 @@ def cpu_calibration() -> dict[str, float]:
 def cs_sweep(lfs: list[float], jobs: int, **options: float
              ) -> tuple[float, list[dict[str, Any]]]:
     """Wall time [s] of one ``sweep`` call and its rows (``options``: rtol, atol)."""
-    from circuitsim.sweep import Metrics, sweep
+    from circuitsim.studies.sweep import Metrics, sweep
 
     metrics = Metrics(probes=("i_total",), order=8, window=(T_STOP - T_WIN) / T_STOP,
                       energy=False)
@@ -239,7 +239,7 @@ def spawn_cost(model, lf: float) -> dict[str, Any]:
     'forkserver' from Python 3.14) imports everything itself (here including this script, as
     spawn re-imports ``__main__``): the time from pool creation to its first finished run,
     minus the time of its second run."""
-    from circuitsim.sweep import Metrics, Run, _worker
+    from circuitsim.studies.sweep import Metrics, Run, _worker
 
     metrics = Metrics(probes=("i_total",), order=8, window=(T_STOP - T_WIN) / T_STOP,
                       energy=False)
@@ -325,7 +325,7 @@ def main(argv: list[str] | None = None) -> int:
     os.environ["CIRCUITSIM_CACHE"] = cache  # set before circuitsim is imported
     warnings.simplefilter("ignore")
     import circuitsim as cs
-    from circuitsim.sweep import parse_range
+    from circuitsim.studies.sweep import parse_range
 
     lfs = parse_range(LF_RANGE)
     info = versions()

@@ -61,3 +61,7 @@ class SolverError(CircuitsimError):
     """The integrator or a Newton solve failed; the message names time and variable."""
 
     exit_code = 1
+
+
+class CircuitWarning(UserWarning):
+    """Physics warnings (non-conserving coupling, inconsistent initial values)."""

@@ -5,14 +5,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from circuitsim.analyses import (
-    ac,
-    harmonic_response,
-    operating_point,
-    periodic_steady_state,
-    probe_values,
-)
 from circuitsim.errors import SolverError
+from circuitsim.solve.ac import ac, harmonic_response
+from circuitsim.solve.op import operating_point, probe_values
+from circuitsim.solve.pss import periodic_steady_state
 
 from conftest import NETLISTS
 from ngspice import require_ngspice, run_ngspice

@@ -8,7 +8,7 @@ import warnings
 import pytest
 
 import circuitsim as cs
-from circuitsim import mna
+from circuitsim.compiler import mna
 
 from conftest import NETLISTS
 
@@ -58,7 +58,7 @@ def test_compiled_model_pickles_for_worker_processes():
 def test_init_op_starts_at_the_averaged_steady_state():
     """Kim base: the operating point (ripple averaged over a turn) is the closed-form DC
     state, and a run from it is already steady."""
-    from circuitsim.analyses import operating_point
+    from circuitsim.solve.op import operating_point
 
     from reference import kim_dc_steady_state
 

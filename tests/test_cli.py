@@ -9,7 +9,7 @@ import sys
 import numpy as np
 import pytest
 
-from circuitsim.cli import component_table, main
+from circuitsim.cli.main import component_table, main
 
 from conftest import NETLISTS, ROOT
 
@@ -97,7 +97,7 @@ def test_console_script_entry_point(tmp_path):
 def test_a_probe_without_a_real_value_is_an_error_not_a_nan(write_netlist, capsys):
     """(-1 V)^1.5 has no real value: run and op must fail naming the probe (exit 1), not
     print nan with exit 0 or a traceback."""
-    from circuitsim.cli import main
+    from circuitsim.cli.main import main
 
     path = write_netlist("""
         title: sq

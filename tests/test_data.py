@@ -9,7 +9,14 @@ from typing import ClassVar
 import numpy as np
 import pytest
 
-from circuitsim.data import DataError, Feature, FeatureSet, load_data, load_features, load_record
+from circuitsim.loop.record import (
+    DataError,
+    Feature,
+    FeatureSet,
+    load_data,
+    load_features,
+    load_record,
+)
 
 PROBES = ("speed", "i_total")
 

@@ -15,9 +15,9 @@ import numpy as np
 import pytest
 
 import circuitsim as cs
-from circuitsim import effects
-from circuitsim.data import Record
-from circuitsim.diagnose import diagnose
+from circuitsim.loop import effects
+from circuitsim.loop.diagnose import diagnose
+from circuitsim.loop.record import Record
 from circuitsim.netlist import build
 
 from conftest import NETLISTS
@@ -154,7 +154,7 @@ def test_effect_outside_the_catalog_is_not_misattributed(tmp_path):
 
 
 def test_noise_floor_is_the_white_level_and_never_above_the_residual():
-    from circuitsim.diagnose import noise_sigma
+    from circuitsim.loop.diagnose import noise_sigma
 
     rng = np.random.default_rng(5)
     white = rng.normal(0.0, 0.3, 20000)
@@ -171,7 +171,7 @@ def test_noise_floor_is_the_white_level_and_never_above_the_residual():
 def test_cli_report_html_and_written_netlist_reproduce_the_diagnosis(tmp_path, capsys):
     """`circuitsim diagnose` on a CSV: diag.json has the required fields, the HTML has both
     plots, and the written netlist, simulated on the record's grid, gives the reported error."""
-    from circuitsim.cli import main
+    from circuitsim.cli.main import main
 
     rec = make_record([("coulomb-friction", "rotor", None, [5e-4])], seed=4)
     csv = tmp_path / "rec.csv"

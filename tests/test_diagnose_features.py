@@ -13,9 +13,9 @@ import warnings
 import pytest
 
 import circuitsim as cs
-from circuitsim.analyses import operating_point, probe_values
-from circuitsim.data import load_features
-from circuitsim.diagnose import diagnose_features
+from circuitsim.loop.diagnose import diagnose_features
+from circuitsim.loop.record import load_features
+from circuitsim.solve.op import operating_point, probe_values
 
 from conftest import NETLISTS
 
@@ -73,7 +73,7 @@ def test_the_speed_effect_is_reported_with_its_equals(diagnosis):
 
 
 def test_the_features_report_has_its_plot_and_final_fit(diagnosis, tmp_path):
-    from circuitsim.diagnose import write_html
+    from circuitsim.report.diagnosis import write_html
 
     out = tmp_path / "diag.html"
     write_html(diagnosis, str(out))
@@ -84,7 +84,7 @@ def test_the_features_report_has_its_plot_and_final_fit(diagnosis, tmp_path):
 
 
 def test_set_overrides_reach_the_fit_and_the_written_netlist(tmp_path, capsys):
-    from circuitsim.cli import main
+    from circuitsim.cli.main import main
 
     out = tmp_path / "fixed.yaml"
     code = main(["diagnose", str(KIM / "case1.yaml"), str(KIM / "filter100mH_features.yaml"),

@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 
 import circuitsim as cs
-from circuitsim import effects
-from circuitsim.analyses import operating_point, probe_values
+from circuitsim.loop import effects
 from circuitsim.netlist import build
+from circuitsim.solve.op import operating_point, probe_values
 
 from conftest import NETLISTS
 

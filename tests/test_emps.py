@@ -16,10 +16,10 @@ import numpy as np
 import pytest
 
 import circuitsim as cs
-from circuitsim import effects
-from circuitsim.data import load_record
-from circuitsim.diagnose import diagnose
-from circuitsim.fit import fit_record
+from circuitsim.loop import effects
+from circuitsim.loop.diagnose import diagnose
+from circuitsim.loop.fit import fit_record
+from circuitsim.loop.record import load_record
 from circuitsim.netlist import build
 
 from conftest import NETLISTS, ROOT

@@ -7,7 +7,7 @@ import warnings
 import pytest
 
 import circuitsim as cs
-from circuitsim.analyses import energy_audit
+from circuitsim.solve.energy import energy_audit
 
 from conftest import NETLISTS
 

@@ -16,8 +16,7 @@ import numpy as np
 import pytest
 
 import circuitsim as cs
-from circuitsim.data import Record, load_features
-from circuitsim.fit import (
+from circuitsim.loop.fit import (
     FitWarning,
     fit,
     fit_features,
@@ -26,6 +25,7 @@ from circuitsim.fit import (
     slow_features,
     smoothing_windows,
 )
+from circuitsim.loop.record import Record, load_features
 
 from conftest import NETLISTS
 
@@ -105,7 +105,7 @@ def test_paper_estimation_from_its_targets(kim):
 
 
 def test_cli_fit_paper_features(tmp_path, capsys):
-    from circuitsim.cli import main
+    from circuitsim.cli.main import main
 
     report = tmp_path / "out" / "fit.json"
     code = main(["fit", str(KIM / "base.yaml"), str(KIM / "paper_features.yaml"),
@@ -308,7 +308,7 @@ def test_fit_input_errors(dc_motor):
 
 
 def test_cli_data_errors_exit_2(tmp_path, capsys):
-    from circuitsim.cli import main
+    from circuitsim.cli.main import main
 
     bad = tmp_path / "rec.csv"
     bad.write_text("time,speed\n" + "".join(f"{k * 1e-3},{k}\n" for k in range(5)) +
@@ -327,7 +327,7 @@ def test_long_run_information_matches_the_ar1_closed_form():
     """A correlated residual carries less information than its sample count says: for an
     AR(1) residual the variance of its sum is m (1 + phi) / (1 - phi) per unit variance, and
     for white noise it is m."""
-    from circuitsim.fit import _long_run_information
+    from circuitsim.loop.fit import _long_run_information
 
     rng = np.random.default_rng(3)
     m = 200_000
@@ -348,7 +348,7 @@ def test_long_run_information_matches_the_ar1_closed_form():
 def test_jacobian_stays_inside_the_bounds_and_reports_failures():
     """At an estimate on its bound (a friction of 0 >= 0) the difference must be one-sided:
     the model fails outside, and a failed evaluation must not become a derivative."""
-    from circuitsim.fit import FAILED_PENALTY, _jacobian, _Space
+    from circuitsim.loop.fit import FAILED_PENALTY, _jacobian, _Space
 
     def fun(z):
         if z[0] < 0:

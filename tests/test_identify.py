@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import circuitsim as cs
-from circuitsim import identify as idf
+from circuitsim.loop import identify as idf
 
 from conftest import HERE, NETLISTS
 

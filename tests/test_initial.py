@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from circuitsim.model import CircuitWarning
+from circuitsim.compiler.model import CircuitWarning
 
 
 def test_capacitor_between_floating_nodes_keeps_its_initial_voltage(compile_text):

@@ -15,7 +15,7 @@ import pytest
 
 import circuitsim as cs
 from circuitsim import signal
-from circuitsim.cli import main
+from circuitsim.cli.main import main
 
 from conftest import NETLISTS
 from reference import simulate_kim_lsoda, small_signal_i8
@@ -25,7 +25,7 @@ BASE = NETLISTS / "kim2024" / "base.yaml"
 
 @pytest.fixture(scope="module")
 def base_model():
-    with pytest.warns(cs.model.CircuitWarning, match="does not conserve energy"):
+    with pytest.warns(cs.CircuitWarning, match="does not conserve energy"):
         return cs.compile(cs.load(BASE))
 
 

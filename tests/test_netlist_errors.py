@@ -19,7 +19,7 @@ from hypothesis import HealthCheck, event, given, settings
 from hypothesis import strategies as st
 
 import circuitsim as cs
-from circuitsim.cli import main as cli_main
+from circuitsim.cli.main import main as cli_main
 
 RLC = (Path(__file__).resolve().parent.parent / "netlists" / "examples" / "rlc.yaml").read_text(
     encoding="utf-8")

@@ -6,7 +6,7 @@ import csv
 
 import pytest
 
-from circuitsim.sweep import Metrics, grid_points, parse_range, sweep
+from circuitsim.studies.sweep import Metrics, grid_points, parse_range, sweep
 
 from conftest import NETLISTS
 

@@ -19,8 +19,8 @@ from pathlib import Path
 import numpy as np
 
 import circuitsim as cs
-from circuitsim.data import Record
-from circuitsim.diagnose import diagnose
+from circuitsim.loop.diagnose import diagnose
+from circuitsim.loop.record import Record
 from circuitsim.netlist import build
 
 HERE = Path(__file__).resolve().parent

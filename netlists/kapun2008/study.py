@@ -18,7 +18,8 @@ from pathlib import Path
 import numpy as np
 
 import circuitsim as cs
-from circuitsim import identify as idf
+from circuitsim.loop import identify as idf
+from circuitsim.report import identify as plots
 
 HERE = Path(__file__).resolve().parent
 ODRIVE = Path("/work/shared/data/real/odrive-bldc-cogging/cogging_maps.csv")
@@ -99,7 +100,7 @@ def main(records: Path | None = None) -> None:
     print(f"voltage constant: peak {peak * 1e3:.2f} mV s/rad, RMS {rms * 1e3:.2f} mV s/rad; "
           f"speed during the test {emf_rec['omega'][5000:].min():.1f}.."
           f"{emf_rec['omega'][5000:].max():.1f} rad/s\n")
-    idf._plot_curve(curve, "number of harmonics K", "J_min [V^2]", out / "emf_jmin.png")
+    plots._plot_curve(curve, "number of harmonics K", "J_min [V^2]", out / "emf_jmin.png")
 
     rec = simulate("bldc")
     w = rec["omega"]
@@ -129,7 +130,7 @@ def main(records: Path | None = None) -> None:
                                         observer=obs)
     print(f"J_min of T_dist versus the number of cogging harmonics K = 0..12 (one noisy "
           f"record) [N^2 m^2]: {', '.join(f'{j:.4g}' for j in curve)}\n")
-    idf._plot_curve(curve, "number of cogging harmonics K", "J_min [N^2 m^2]",
+    plots._plot_curve(curve, "number of cogging harmonics K", "J_min [N^2 m^2]",
                     out / "cogging_jmin.png")
 
     for label, kw in (("regressors through the observer loop", {"compensate": True}),
@@ -192,7 +193,7 @@ def odrive_study(out: Path) -> None:
           f"offset c0 = {fit.fit['c0']:+.4f} A")
     sel = trial == "b"
     fit = idf.fit_periodic_map(rec["angle_rad"][sel], rec["iq_hold_A"][sel], 6)
-    idf._plot_map(rec["angle_rad"][sel], rec["iq_hold_A"][sel], fit, None,
+    plots._plot_map(rec["angle_rad"][sel], rec["iq_hold_A"][sel], fit, None,
                   out / "odrive_fit.png")
 
 

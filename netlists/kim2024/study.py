@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 
 import circuitsim as cs
-from circuitsim.sweep import Metrics, parse_range, sweep
+from circuitsim.studies.sweep import Metrics, parse_range, sweep
 
 HERE = Path(__file__).resolve().parent
 CASES = ["base", "case1", "case2", "case3", "case4", "case5", "case6"]

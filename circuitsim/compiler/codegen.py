@@ -6,53 +6,15 @@ Jacobian dF/dy + cj dF/dy', the parts dF/dy, dF/dy', dF/dt (for consistent initi
 linearisation), and a vectorised ``observe`` giving every probe and every eliminated variable.
 Parameters are a run-time tuple, so a parameter change never reaches sympy.
 
-The module is written to the cache directory and imported from there; a second run of the
+The module is stored by ``cache`` and imported from there; a second run of the
 same topology imports it without touching sympy.
 """
 
 from __future__ import annotations
 
-import hashlib
-import importlib.util
-import json
-import os
-import sys
-import tempfile
-from pathlib import Path
-from types import ModuleType
 from typing import Any
 
 CODEGEN_VERSION = "4"
-
-
-def cache_dir() -> Path:
-    """Where compiled models live: $CIRCUITSIM_CACHE, else ~/.cache/circuitsim."""
-    env = os.environ.get("CIRCUITSIM_CACHE")
-    base = Path(env) if env else Path(os.environ.get("XDG_CACHE_HOME",
-                                                     Path.home() / ".cache")) / "circuitsim"
-    return base
-
-
-def _code_fingerprint() -> str:
-    """Hash of the derivation code and the component library, so an edited component or
-    pipeline stage never meets a stale cached model."""
-    import circuitsim_components
-
-    h = hashlib.sha256()
-    core = Path(__file__).parent
-    for d in (core, Path(circuitsim_components.__file__).parent):
-        for f in sorted(d.glob("*.py")):
-            if f.name not in ("cli.py", "signal.py", "result.py"):
-                h.update(f.read_bytes())
-    return h.hexdigest()[:16]
-
-
-def cache_key(topology: str) -> str:
-    import circuitsim
-
-    raw = (f"{topology}|{CODEGEN_VERSION}|{circuitsim.__version__}|{sys.version_info[:2]}|"
-           f"{_code_fingerprint()}")
-    return "m" + hashlib.sha256(raw.encode()).hexdigest()[:24]
 
 
 def _printers():
@@ -123,7 +85,7 @@ def generate(dae) -> tuple[str, dict[str, Any]]:
     """Source of the generated module and its metadata (JSON-serialisable)."""
     import sympy as sp
 
-    from .component import as_expr
+    from circuitsim.component import as_expr
 
     scalar, vector = _printers()
     ren = _names(dae)
@@ -225,33 +187,3 @@ def generate(dae) -> tuple[str, dict[str, Any]]:
     return "\n".join(src), meta
 
 
-def store(key: str, source: str, meta: dict) -> None:
-    """Write the module and metadata atomically (a killed run leaves no half file)."""
-    d = cache_dir()
-    d.mkdir(parents=True, exist_ok=True)
-    for suffix, text in ((".py", source), (".json", json.dumps(meta))):
-        fd, tmp = tempfile.mkstemp(dir=d, prefix=f".{key}", suffix=suffix)
-        with os.fdopen(fd, "w", encoding="utf-8") as fh:
-            fh.write(text)
-        os.replace(tmp, d / f"{key}{suffix}")
-
-
-def load_cached(key: str) -> tuple[ModuleType, dict] | None:
-    d = cache_dir()
-    py, js = d / f"{key}.py", d / f"{key}.json"
-    if not (py.exists() and js.exists()):
-        return None
-    try:
-        meta = json.loads(js.read_text(encoding="utf-8"))
-        return import_module(key, py), meta
-    except (OSError, ValueError, SyntaxError):
-        return None
-
-
-def import_module(key: str, path: Path) -> ModuleType:
-    """Import a generated module from its file (so Python caches its bytecode too)."""
-    spec = importlib.util.spec_from_file_location(f"circuitsim_generated_{key}", path)
-    assert spec is not None and spec.loader is not None
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod

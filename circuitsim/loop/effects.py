@@ -16,8 +16,8 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
-from .errors import SourceLoc
-from .netlist import Netlist, RawNetlist
+from circuitsim.errors import SourceLoc
+from circuitsim.netlist.load import Netlist, RawNetlist
 
 CATALOG_IDS = ("series-resistance", "source-resistance", "brush-drop", "coulomb-friction",
                "viscous-friction", "cogging", "emf-harmonic", "inductor-saturation",

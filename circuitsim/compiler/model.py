@@ -14,13 +14,9 @@ from typing import Any
 
 import numpy as np
 
-from . import codegen
-from .errors import ParameterError
-from .netlist import Netlist
-
-
-class CircuitWarning(UserWarning):
-    """Physics warnings (non-conserving coupling, inconsistent initial values)."""
+from circuitsim.compiler import cache, codegen
+from circuitsim.errors import CircuitWarning, ParameterError
+from circuitsim.netlist.load import Netlist
 
 
 def _near(name: str, options) -> str:
@@ -78,10 +74,10 @@ class CompiledModel:
     def fns(self):
         """(residual, jac, parts, observe, initial) bound to this netlist's tables."""
         if self._fns is None:
-            cached = codegen.load_cached(self.key)
+            cached = cache.load_cached(self.key)
             if cached is None:  # another machine or a cleared cache: derive again
                 fresh = compile(self.netlist, use_cache=True)
-                cached = (codegen.load_cached(fresh.key) or (None, None))
+                cached = (cache.load_cached(fresh.key) or (None, None))
             module, _ = cached
             tables = [_Table(t.x, t.y) for c in self.netlist.components for t in c.tables]
             self._fns = module.make([t.__call__ for t in tables], [t.slope for t in tables],
@@ -148,20 +144,20 @@ class CompiledModel:
     def simulate(self, stop: float | None = None, params: Mapping[str, float] | None = None,
                  **kw):
         """Transient from rest (or ``init='op'``); see integrate.simulate for the options."""
-        from .integrate import simulate
+        from circuitsim.solve.integrate import simulate
 
         return simulate(self, stop=stop, params=params, **kw)
 
 
 def compile(net: Netlist, use_cache: bool = True) -> CompiledModel:
     """Derive (or fetch from the cache) the compiled model of a netlist's topology."""
-    key = codegen.cache_key(net.topology_key())
-    cached = codegen.load_cached(key) if use_cache else None
+    key = cache.cache_key(net.topology_key())
+    cached = cache.load_cached(key) if use_cache else None
     if cached is not None:
         _, meta = cached
         model = CompiledModel(net, key, meta)
     else:
-        from . import graph, mna, structure
+        from circuitsim.compiler import graph, mna, structure
 
         cg = graph.build(net)
         dae = mna.assemble(net)
@@ -173,7 +169,7 @@ def compile(net: Netlist, use_cache: bool = True) -> CompiledModel:
         idx1 = structure.reduce_index(dae, nominal)
         source, meta = codegen.generate(idx1)
         meta["graph_warnings"] = list(cg.warnings)
-        codegen.store(key, source, meta)
+        cache.store(key, source, meta)
         model = CompiledModel(net, key, meta)
     warn = model.physics_warnings(model.param_values())
     for w in warn:
@@ -184,7 +180,7 @@ def compile(net: Netlist, use_cache: bool = True) -> CompiledModel:
 
 def derive(net: Netlist):
     """The symbolic DAE and its index-1 form (for ``circuitsim equations``/``check``)."""
-    from . import graph, mna, structure
+    from circuitsim.compiler import graph, mna, structure
 
     cg = graph.build(net)
     dae = mna.assemble(net)

@@ -13,9 +13,9 @@ from dataclasses import dataclass
 
 import networkx as nx
 
-from .component import DOMAINS
-from .errors import NetlistError, SingularCircuitError
-from .netlist import Netlist
+from circuitsim.component import DOMAINS
+from circuitsim.errors import NetlistError, SingularCircuitError
+from circuitsim.netlist.load import Netlist
 
 REF = "<ref>"
 

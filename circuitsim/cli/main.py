@@ -11,17 +11,17 @@ import json
 import math
 import os
 import sys
-import tempfile
 import warnings
 from pathlib import Path
 
-from .errors import CircuitsimError, ParameterError, SolverError
+from circuitsim.errors import CircuitsimError, ParameterError, SolverError
+from circuitsim.report.plots import _bode, plot
 
 
 def _parse_sets(model, items: list[str]) -> dict[str, float]:
     """``NAME=VALUE`` pairs -> SI floats, units checked against the parameter."""
-    from . import expr as ex
-    from .units import compatible, explain_mismatch, unit_info
+    from circuitsim.netlist import expr as ex
+    from circuitsim.units import compatible, explain_mismatch, unit_info
 
     out: dict[str, float] = {}
     comp_units = {n: v.unit for c in model.netlist.components for n, v in c.values.items()}
@@ -50,22 +50,9 @@ def _parse_sets(model, items: list[str]) -> dict[str, float]:
     return out
 
 
-def _atomic_write(path: str, write) -> None:
-    d = os.path.dirname(os.path.abspath(path)) or "."
-    os.makedirs(d, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=d, prefix=".circuitsim-", suffix=Path(path).suffix)
-    os.close(fd)
-    try:
-        write(tmp)
-        os.replace(tmp, path)
-    finally:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-
-
 def summarize(res, window: float) -> dict:
     """Steady value and dominant ripple of each probe over the last ``window`` of the run."""
-    from . import signal
+    from circuitsim import signal
 
     out = {}
     m = res.window(window)
@@ -85,30 +72,9 @@ def summarize(res, window: float) -> dict:
     return out
 
 
-def plot(res, path: str, names: list[str] | None = None) -> None:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    names = list(names or res.probes or res.states)[:8]
-    fig, axes = plt.subplots(len(names), 1, figsize=(8, 2.2 * len(names) + 0.6), sharex=True,
-                             squeeze=False)
-    for ax, name in zip(axes[:, 0], names, strict=True):
-        ax.plot(res.t, res[name], lw=0.7)
-        unit = res.model.meta["units"].get(name, "")
-        ax.set_ylabel(f"{name}" + (f" [{unit}]" if unit else ""))
-        ax.grid(alpha=0.3)
-    axes[-1, 0].set_xlabel("time [s]")
-    fig.suptitle(res.model.netlist.title)
-    fig.tight_layout()
-    _atomic_write(path, lambda p: fig.savefig(p, dpi=110, format="png"))
-    plt.close(fig)
-
-
 def cmd_run(args) -> int:
-    from .model import compile as compile_model
-    from .netlist import load
+    from circuitsim.compiler.model import compile as compile_model
+    from circuitsim.netlist.load import load
 
     net = load(args.netlist)
     with warnings.catch_warnings(record=True) as caught:
@@ -162,8 +128,8 @@ def _fmt(x: float, unit: str) -> str:
 
 
 def cmd_check(args) -> int:
-    from .model import CompiledModel, derive
-    from .netlist import load
+    from circuitsim.compiler.model import CompiledModel, derive
+    from circuitsim.netlist.load import load
 
     net = load(args.netlist)
     with warnings.catch_warnings(record=True) as caught:
@@ -188,8 +154,8 @@ def cmd_check(args) -> int:
 
 
 def cmd_equations(args) -> int:
-    from .model import derive
-    from .netlist import load
+    from circuitsim.compiler.model import derive
+    from circuitsim.netlist.load import load
 
     net = load(args.netlist)
     with warnings.catch_warnings():
@@ -205,8 +171,7 @@ def cmd_equations(args) -> int:
 def component_table(markdown: bool = False) -> str:
     """The component registry as a table (type, ports, parameters, summary)."""
     import circuitsim_components  # noqa: F401
-
-    from .component import COMPONENTS, Expression, Option, Param, RecordList, Signal
+    from circuitsim.component import COMPONENTS, Expression, Option, Param, RecordList, Signal
 
     rows = []
     seen = set()
@@ -241,8 +206,9 @@ def cmd_components(args) -> int:
 
 
 def cmd_sweep(args) -> int:
-    from .netlist import load
-    from .sweep import Metrics, parse_range, plot_sweep, progress_bar, sweep
+    from circuitsim.netlist.load import load
+    from circuitsim.report.plots import plot_sweep
+    from circuitsim.studies.sweep import Metrics, parse_range, progress_bar, sweep
 
     first = load(args.netlists[0])
     units = {n: v.unit for c in first.components for n, v in c.values.items()}
@@ -279,8 +245,8 @@ def cmd_sweep(args) -> int:
 
 
 def _load_model(path: str):
-    from .model import compile as compile_model
-    from .netlist import load
+    from circuitsim.compiler.model import compile as compile_model
+    from circuitsim.netlist.load import load
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
@@ -288,7 +254,7 @@ def _load_model(path: str):
 
 
 def _freqs(text: str, points: int) -> list[float]:
-    from .sweep import parse_range
+    from circuitsim.studies.sweep import parse_range
 
     if ".." in text and ":" not in text:
         text = f"{text}:log:{points}"
@@ -296,7 +262,7 @@ def _freqs(text: str, points: int) -> list[float]:
 
 
 def cmd_op(args) -> int:
-    from .analyses import operating_point, probe_values
+    from circuitsim.solve.op import operating_point, probe_values
 
     model = _load_model(args.netlist)
     params = _parse_sets(model, args.set or [])
@@ -325,7 +291,7 @@ def cmd_op(args) -> int:
 
 
 def cmd_ac(args) -> int:
-    from .analyses import ac, harmonic_response, linearize
+    from circuitsim.solve.ac import ac, harmonic_response, linearize
 
     model = _load_model(args.netlist)
     params = _parse_sets(model, args.set or [])
@@ -356,27 +322,8 @@ def cmd_ac(args) -> int:
     return 0
 
 
-def _bode(res, path: str) -> None:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, (a1, a2) = plt.subplots(2, 1, figsize=(7, 5), sharex=True)
-    a1.loglog(res.frequency, res.magnitude)
-    a1.set_ylabel(f"|{res.output} / {res.input}|")
-    a2.semilogx(res.frequency, res.phase)
-    a2.set_ylabel("phase [deg]")
-    a2.set_xlabel("frequency [Hz]")
-    for a in (a1, a2):
-        a.grid(alpha=0.3, which="both")
-    fig.tight_layout()
-    _atomic_write(path, lambda p: fig.savefig(p, dpi=110, format="png"))
-    plt.close(fig)
-
-
 def cmd_pss(args) -> int:
-    from .analyses import periodic_steady_state
+    from circuitsim.solve.pss import periodic_steady_state
 
     model = _load_model(args.netlist)
     params = _parse_sets(model, args.set or [])
@@ -464,14 +411,8 @@ def build_parser() -> argparse.ArgumentParser:
     # (each module keeps its top-level imports light: this runs on every CLI call).
     import importlib
 
-    for study in ("fit", "diagnose", "identify"):
-        try:
-            mod = importlib.import_module(f".{study}", __package__)
-        except ModuleNotFoundError as exc:
-            if exc.name != f"{__package__}.{study}":
-                raise
-            continue
-        mod.add_cli(sub)
+    for study in ("circuitsim.cli.fit", "circuitsim.cli.diagnose", "circuitsim.cli.identify"):
+        importlib.import_module(study).add_cli(sub)
     c = sub.add_parser("check", help="validate; show the graph and equation counts")
     c.add_argument("netlist")
     c.set_defaults(func=cmd_check)

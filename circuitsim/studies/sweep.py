@@ -25,7 +25,7 @@ from typing import Any
 
 import numpy as np
 
-from .errors import CircuitsimError, ParameterError
+from circuitsim.errors import CircuitsimError, ParameterError
 
 
 def parse_range(text: str, unit: str | None = None, dim=None) -> list[float]:
@@ -34,8 +34,8 @@ def parse_range(text: str, unit: str | None = None, dim=None) -> list[float]:
     A value written with a unit is checked against ``unit`` (a unit string) or ``dim`` (a
     units.Dim): ``10k`` is not 10 000 but 10 Boltzmann constants, and is refused for Hz.
     """
-    from . import expr as ex
-    from .units import compatible, explain_mismatch, unit_info
+    from circuitsim.netlist import expr as ex
+    from circuitsim.units import compatible, explain_mismatch, unit_info
 
     target = dim if dim is not None else (unit_info(unit)[1] if unit else None)
 
@@ -124,8 +124,8 @@ def _fmt(v: float) -> str:
 
 def _run_one(model, run: Run, metrics: Metrics) -> dict[str, Any]:
     """Worker: simulate one grid point and reduce it to a row (never raises)."""
-    from . import signal
-    from .analyses import energy_audit
+    from circuitsim import signal
+    from circuitsim.solve.energy import energy_audit
 
     row: dict[str, Any] = {"netlist": run.netlist, **run.params}
     t0 = time.perf_counter()
@@ -236,8 +236,8 @@ def sweep(netlists: str | Path | Sequence[str | Path],
     out : CSV file; rows are appended as runs finish. ``resume`` skips runs already in it.
     sim_options : passed to ``CompiledModel.simulate`` (rtol, atol, step, init, ...).
     """
-    from .model import compile as compile_model
-    from .netlist import load
+    from circuitsim.compiler.model import compile as compile_model
+    from circuitsim.netlist.load import load
 
     paths = [netlists] if isinstance(netlists, (str, Path)) else list(netlists)
     metrics = metrics or Metrics()
@@ -319,31 +319,3 @@ def progress_bar(stream=sys.stderr) -> Callable[[int, int, dict], None]:
     return show
 
 
-def plot_sweep(rows: list[dict[str, Any]], x: str, y: str, path: str,
-               logx: bool = True, logy: bool = True) -> None:
-    """Metric ``y`` against swept parameter ``x``, one line per netlist."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    from .cli import _atomic_write
-
-    fig, ax = plt.subplots(figsize=(7, 4.2))
-    for net in dict.fromkeys(r["netlist"] for r in rows):
-        pts = sorted((float(r[x]), float(r[y])) for r in rows
-                     if r["netlist"] == net and r.get(y) not in (None, ""))
-        if pts:
-            xs, ys = zip(*pts, strict=True)
-            ax.plot(xs, ys, "o-", label=Path(net).stem)
-    if logx:
-        ax.set_xscale("log")
-    if logy:
-        ax.set_yscale("log")
-    ax.set_xlabel(x)
-    ax.set_ylabel(y)
-    ax.grid(alpha=0.3, which="both")
-    ax.legend()
-    fig.tight_layout()
-    _atomic_write(path, lambda p: fig.savefig(p, dpi=110, format="png"))
-    plt.close(fig)

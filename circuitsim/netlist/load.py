@@ -17,8 +17,7 @@ from functools import lru_cache
 from pathlib import Path
 from typing import Any
 
-from . import expr as ex
-from .component import (
+from circuitsim.component import (
     COMPONENTS,
     DOMAINS,
     WAVEFORMS,
@@ -30,10 +29,12 @@ from .component import (
     Signal,
     TableData,
 )
-from .errors import NetlistError, ParameterError, SourceLoc
-from .units import Dim, compatible, explain_mismatch, unit_info
+from circuitsim.errors import NetlistError, ParameterError, SourceLoc
+from circuitsim.files import atomic_write
+from circuitsim.netlist import expr as ex
+from circuitsim.units import Dim, compatible, explain_mismatch, unit_info
 
-SCHEMA_PATH = Path(__file__).with_name("netlist.schema.json")
+SCHEMA_PATH = Path(__file__).with_name("schema.json")
 
 
 @dataclass(frozen=True)
@@ -238,7 +239,7 @@ def _read_yaml(path: Path) -> Any:
                 break
         where = "/".join(str(p) for p in err.path) or "top level"
         raise NetlistError(f"does not match the netlist schema at {where}: {err.message}. "
-                           f"See circuitsim/netlist.schema.json.", loc)
+                           f"See circuitsim/netlist/schema.json.", loc)
     return doc
 
 
@@ -270,7 +271,6 @@ class RawNetlist:
         """Write a self-contained netlist (includes merged; table files re-pointed), atomically."""
         import io
         import os
-        import tempfile
 
         from ruamel.yaml import YAML
 
@@ -307,10 +307,7 @@ class RawNetlist:
         yaml.dump(doc, buf)
         text = "".join(f"# {ln}\n" if ln else "#\n" for ln in header.splitlines()) + \
             buf.getvalue()
-        fd, tmp = tempfile.mkstemp(dir=out_dir, prefix=".circuitsim-", suffix=".yaml")
-        with os.fdopen(fd, "w", encoding="utf-8") as fh:
-            fh.write(text)
-        os.replace(tmp, path)
+        atomic_write(path, text)
 
 
 _Raw = RawNetlist
@@ -613,7 +610,7 @@ class _Builder:
         return len(body)
 
     def table(self, body: Mapping, loc: SourceLoc, comp: str, path: str) -> TableData:
-        from .data import read_column
+        from circuitsim.netlist.tables import read_column
 
         file = Path(path).parent / str(body["file"])
         x, y = read_column(file, str(body["column"]), str(body.get("time", "time")), loc, comp)

@@ -4,14 +4,14 @@ from __future__ import annotations
 
 import difflib
 import os
-import tempfile
 from dataclasses import dataclass, field
 from enum import Enum
 from typing import Any
 
 import numpy as np
 
-from . import signal
+from circuitsim import signal
+from circuitsim.files import atomic_write
 
 
 class Status(Enum):
@@ -70,7 +70,7 @@ class SimResult:
                 with np.errstate(all="ignore"):
                     vals = observe(self.t, self.y, self.yp, self.params)
             except (ArithmeticError, ValueError) as exc:
-                from .errors import NetlistError
+                from circuitsim.errors import NetlistError
 
                 raise NetlistError(f"a probe or variable cannot be evaluated on this run "
                                    f"({type(exc).__name__}: {exc}); check the probe "
@@ -123,14 +123,10 @@ class SimResult:
         """Write time and the named series (default: probes, else states), atomically."""
         names = list(names or self.probes or self.states)
         data = np.column_stack([self.t] + [self[n] for n in names])
-        d = os.path.dirname(os.path.abspath(path))
-        fd, tmp = tempfile.mkstemp(dir=d, prefix=".circuitsim-", suffix=".csv")
-        try:
-            with os.fdopen(fd, "w", encoding="utf-8") as fh:
+
+        def write(tmp: str) -> None:
+            with open(tmp, "w", encoding="utf-8") as fh:
                 fh.write(",".join(["time", *names]) + "\n")
                 np.savetxt(fh, data, delimiter=",", fmt="%.12g")
-            os.replace(tmp, path)
-        except BaseException:
-            if os.path.exists(tmp):
-                os.unlink(tmp)
-            raise
+
+        atomic_write(path, write, make_dirs=False)

@@ -26,9 +26,9 @@ import networkx as nx
 import numpy as np
 import sympy as sp
 
-from .component import as_expr
-from .errors import SingularCircuitError
-from .mna import BreakSource, Dae, format_equations
+from circuitsim.compiler.mna import BreakSource, Dae, format_equations
+from circuitsim.component import as_expr
+from circuitsim.errors import SingularCircuitError
 
 
 @dataclass(frozen=True)

@@ -18,59 +18,21 @@ what would fix it.
 
 from __future__ import annotations
 
-import csv
 import difflib
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from .errors import CircuitsimError, NetlistError, SourceLoc
+from circuitsim.errors import CircuitsimError, SourceLoc
+from circuitsim.files import numeric_rows, read_rows
 
 
 class DataError(CircuitsimError):
     """A measured record or feature file is malformed, or does not match the netlist."""
-
-
-def read_column(file: Path, column: str, time: str = "time", loc: SourceLoc | None = None,
-                comp: str | None = None) -> tuple[np.ndarray, np.ndarray]:
-    """Read ``time`` and ``column`` from a CSV with a header row; SI units assumed.
-
-    Raises NetlistError for a missing file or column, NaNs, or a time axis that does not
-    increase.
-    """
-    where = loc or SourceLoc(str(file))
-    try:
-        with open(file, encoding="utf-8") as fh:
-            header = [h.strip() for h in fh.readline().strip().split(",")]
-        arr = np.loadtxt(file, delimiter=",", skiprows=1, ndmin=2)
-    except OSError:
-        raise NetlistError(f"data file '{file}' not found", where, comp) from None
-    except ValueError as exc:
-        raise NetlistError(f"data file '{file}' is not a numeric CSV: {exc}", where,
-                           comp) from None
-    for name in (time, column):
-        if name not in header:
-            raise NetlistError(f"data file '{file}' has no column '{name}' (columns: "
-                               f"{', '.join(header)})", where, comp)
-    if arr.shape[1] != len(header):
-        raise NetlistError(f"data file '{file}': rows have {arr.shape[1]} values, header has "
-                           f"{len(header)}", where, comp)
-    x, y = arr[:, header.index(time)], arr[:, header.index(column)]
-    if len(x) < 2:
-        raise NetlistError(f"data file '{file}' needs at least two rows", where, comp)
-    if not (np.all(np.isfinite(x)) and np.all(np.isfinite(y))):
-        bad = int(np.argmax(~(np.isfinite(x) & np.isfinite(y))))
-        raise NetlistError(f"data file '{file}' has a missing or NaN value in row {bad + 2}",
-                           where, comp)
-    if np.any(np.diff(x) <= 0):
-        bad = int(np.argmax(np.diff(x) <= 0))
-        raise NetlistError(f"data file '{file}': time does not increase at row {bad + 3}",
-                           where, comp)
-    return x, y
 
 
 # --------------------------------------------------------------------------- records
@@ -104,39 +66,8 @@ class Record:
         return bool(np.ptp(dt) <= 1e-6 * np.mean(dt))
 
 
-def _row_error(path: str, row: int, message: str, fix: str) -> DataError:
-    return DataError(f"{message}. {fix}", SourceLoc(path, row))
-
-
-def _scan_rows(path: str, header: list[str], text_rows: list[list[str]]) -> np.ndarray:
-    """Parse rows one by one so the error names the row (1-based file line) and column."""
-    out = np.empty((len(text_rows), len(header)))
-    for i, row in enumerate(text_rows):
-        line = i + 2
-        if len(row) != len(header):
-            raise _row_error(path, line, f"row {line} has {len(row)} values, the header has "
-                             f"{len(header)} ({', '.join(header)})",
-                             "Every row needs one value per column; remove the stray comma "
-                             "or fill the missing value")
-        for j, cell in enumerate(row):
-            s = cell.strip()
-            if not s:
-                raise _row_error(path, line, f"row {line}, column '{header[j]}' is empty "
-                                 f"(a missing value)",
-                                 "Remove the row, or interpolate the missing sample")
-            try:
-                v = float(s)
-            except ValueError:
-                raise _row_error(path, line, f"row {line}, column '{header[j]}': '{s[:20]}' is "
-                                 f"not a number",
-                                 "Write plain numbers in SI units (no unit suffixes, no "
-                                 "thousands separators); put units in the netlist") from None
-            if not math.isfinite(v):
-                raise _row_error(path, line, f"row {line}, column '{header[j]}' is "
-                                 f"{s or 'empty'} (missing or NaN)",
-                                 "Remove the row, or interpolate the missing sample")
-            out[i, j] = v
-    return out
+def _row_error(path: str) -> Callable[[str, int], DataError]:
+    return lambda message, line: DataError(message, SourceLoc(path, line))
 
 
 def load_record(path: str | Path, probes: Sequence[str] | None = None, *,
@@ -166,21 +97,11 @@ def load_record(path: str | Path, probes: Sequence[str] | None = None, *,
         not increase or starts before 0, and a record without any probe column.
     """
     p = str(path)
-    try:
-        with open(path, encoding="utf-8", newline="") as fh:
-            rows = list(csv.reader(fh))
-    except FileNotFoundError:
-        raise DataError(f"data file '{p}' not found. Check the path", SourceLoc(p)) from None
-    except OSError as exc:
-        raise DataError(f"cannot read data file '{p}': {exc.strerror}", SourceLoc(p)) from None
-    except UnicodeDecodeError:
-        raise DataError(f"data file '{p}' is not UTF-8 text. Export the record as a CSV text "
-                        f"file", SourceLoc(p)) from None
-    rows = [r for r in rows if any(c.strip() for c in r)]  # blank lines carry nothing
-    if not rows:
+    header, body = read_rows(p, _row_error(p))
+    if not header:
         raise DataError(f"data file '{p}' is empty. A record is a CSV with a header row "
                         f"('{time},PROBE,...') and one sample per row", SourceLoc(p))
-    header = [h.strip() for h in rows[0]]
+    rows = [header, *body]
     if all(_is_number(h) for h in header):
         raise DataError(f"data file '{p}' has no header row (the first row is numbers). Add "
                         f"a first row naming the columns: '{time},PROBE,...'", SourceLoc(p, 1))
@@ -214,13 +135,7 @@ def load_record(path: str | Path, probes: Sequence[str] | None = None, *,
                             f"(columns: {', '.join(header)}; probes: {', '.join(probes)}). "
                             f"Name each measured column after the probe it measures",
                             SourceLoc(p, 1))
-    try:
-        # the fast path; on any doubt the row-by-row scan finds the offending cell
-        arr = np.loadtxt(p, delimiter=",", skiprows=1, ndmin=2, encoding="utf-8")
-        if arr.shape != (len(rows) - 1, len(header)) or not np.all(np.isfinite(arr)):
-            raise ValueError
-    except ValueError:
-        arr = _scan_rows(p, header, rows[1:])
+    arr = numeric_rows(p, header, body, _row_error(p))
     t = arr[:, header.index(time)]
     if t[0] < 0:
         raise DataError(f"time starts at {t[0]:g} s (row 2). The model starts from rest at "
@@ -293,7 +208,7 @@ class FeatureSet:
 
     def check(self, model) -> None:
         """Raise DataError when a feature names no probe of ``model`` or has the wrong unit."""
-        from .units import compatible, explain_mismatch, unit_info
+        from circuitsim.units import compatible, explain_mismatch, unit_info
 
         probes = model.probe_names
         units = model.meta.get("units", {})
@@ -318,7 +233,7 @@ class FeatureSet:
 
 def _feature_value(raw: Any, loc: SourceLoc, what: str) -> tuple[float, Any]:
     """SI value and dimension (None for a bare number) of a number or '6200 rpm'."""
-    from . import expr as ex
+    from circuitsim.netlist import expr as ex
 
     if isinstance(raw, bool) or raw is None or isinstance(raw, (list, dict)):
         raise DataError(f"{what} must be a number with an optional unit (e.g. '0.38 A'), not "
@@ -353,7 +268,7 @@ def load_features(path: str | Path) -> FeatureSet:
     from ruamel.yaml import YAML
     from ruamel.yaml.error import YAMLError
 
-    from .netlist import _loc
+    from circuitsim.netlist.load import _loc
 
     p = str(path)
     try:
@@ -463,7 +378,7 @@ def _parse_feature(e: Any, loc: SourceLoc, i: int) -> list[Feature]:
 
 
 def _same_dim(value_dim: Any, sigma_dim: Any, loc: SourceLoc, where: str) -> None:
-    from .units import compatible
+    from circuitsim.units import compatible
 
     if value_dim is not None and sigma_dim is not None and not compatible(value_dim,
                                                                           sigma_dim):

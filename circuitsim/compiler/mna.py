@@ -14,8 +14,7 @@ from typing import Any
 
 import sympy as sp
 
-from . import expr as ex
-from .component import (
+from circuitsim.component import (
     DOMAINS,
     WAVEFORMS,
     Component,
@@ -29,8 +28,9 @@ from .component import (
     Waveform,
     as_expr,
 )
-from .errors import NetlistError
-from .netlist import ComponentSpec, Netlist
+from circuitsim.errors import NetlistError
+from circuitsim.netlist import expr as ex
+from circuitsim.netlist.load import ComponentSpec, Netlist
 
 
 @dataclass(frozen=True)

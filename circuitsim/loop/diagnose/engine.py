@@ -22,270 +22,25 @@ Top-level imports stay light (numpy only): the CLI imports this module on every 
 
 from __future__ import annotations
 
-import base64
-import html
-import io
-import json
 import math
-import os
-import sys
-import tempfile
 import warnings
 from collections.abc import Mapping, MutableMapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
-from .errors import CircuitsimError
+from circuitsim.errors import CircuitsimError
+from circuitsim.loop.diagnose.residual import _orders, analyse
+from circuitsim.loop.diagnose.result import Accepted, Diagnosis, DiagnosisError
 
 BIC_MARGIN = 10.0  # "very strong" evidence on the Kass-Raftery scale
 EXCESS_FRACTION = 0.3  # share of the above-noise residual an accepted effect must explain
 SCREEN_TOP = 4  # candidates refitted with full simulation per round
 MAX_EFFECTS = 4
-ORDER_TOL = 0.03  # a spectral peak is order k when |f/f_shaft - k| < ORDER_TOL k
-
-
-class DiagnosisError(CircuitsimError):
-    """The diagnosis cannot run on this record or netlist."""
-
-
-@dataclass
-class Accepted:
-    effect: str
-    target: str
-    parameters: dict[str, float]
-    stderr: dict[str, float | None]
-    error_after: float
-    evidence: dict[str, Any]
-
-
-@dataclass
-class Diagnosis:
-    """What the diagnosis found; ``as_dict`` is the diag.json report."""
-
-    error_before: float
-    error_after: float
-    errors_before: dict[str, float]
-    errors_after: dict[str, float]
-    effects: list[Accepted]
-    indistinct: list[str]
-    remaining: dict[str, Any]
-    analysis_before: dict[str, Any]
-    analysis_after: dict[str, Any]
-    raw: Any = field(repr=False, default=None)
-    fit_before: Any = field(repr=False, default=None)
-    fit_after: Any = field(repr=False, default=None)
-    record: Any = field(repr=False, default=None)
-    timings: dict[str, float] = field(default_factory=dict)
-    rejected: list[dict[str, Any]] = field(default_factory=list)
-
-    def as_dict(self) -> dict[str, Any]:
-        return _clean({
-            "error_before": self.error_before, "error_after": self.error_after,
-            "errors": {"before": self.errors_before, "after": self.errors_after},
-            "effects": [{"effect": a.effect, "target": a.target, "parameters": a.parameters,
-                         "stderr": a.stderr, "error_after": a.error_after,
-                         "evidence": a.evidence} for a in self.effects],
-            "indistinct": self.indistinct, "remaining": self.remaining,
-            "analysis_before": self.analysis_before, "analysis_after": self.analysis_after,
-            "considered_not_accepted": self.rejected, "timings": self.timings,
-            "final_fit": self.final_parameters(),
-            "summary": self.summary(),
-        })
-
-    def final_parameters(self) -> dict[str, dict[str, float | None]]:
-        """Every free parameter of the final model (declared ones and those of the accepted
-        effects, refitted together): start, estimate and standard error [SI]. An effect's
-        ``parameters`` are its values when it was accepted; later effects move them.
-        ``before``: a declared parameter's estimate in the declared model (None for the
-        effects' parameters, which that model lacks)."""
-        fit = self.fit_after
-        if fit is None:
-            return {}
-        before = self.fit_before.estimate if self.fit_before is not None else {}
-        return {n: {"before": before.get(n), "estimate": fit.estimate[n],
-                    "stderr": fit.stderr[n] if math.isfinite(fit.stderr[n]) else None}
-                for n in fit.free}
-
-    def summary(self) -> str:
-        if not self.effects:
-            head = "nothing significant: no effect of the catalog explains the residual"
-        else:
-            head = "; ".join(f"{a.effect} on {a.target} " +
-                             ", ".join(f"{k} = {v:.4g}" for k, v in a.parameters.items())
-                             for a in self.effects)
-        tail = ("; structure remains: " + self.remaining["note"]) if \
-            self.remaining.get("structure") else ""
-        return f"{head} (error {self.error_before:.4g} -> {self.error_after:.4g}){tail}"
-
-
-def _clean(obj: Any) -> Any:
-    if isinstance(obj, dict):
-        return {str(k): _clean(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [_clean(v) for v in obj]
-    if isinstance(obj, (np.floating, float)):
-        return float(obj) if math.isfinite(obj) else None
-    if isinstance(obj, np.integer):
-        return int(obj)
-    if isinstance(obj, np.bool_):
-        return bool(obj)
-    return obj
 
 
 # ------------------------------------------------------------------ residual analysis
-
-def noise_sigma(r: np.ndarray) -> float:
-    """White-noise level of a residual from its third differences (robust: median).
-
-    Differencing removes smooth structure (a tone at 2 % of the sample rate keeps 0.2 % of
-    its size after three differences) and multiplies white noise's variance by C(6, 3) = 20.
-    A tone near the Nyquist frequency is amplified instead (up to 64/20 in variance), so the
-    estimate is capped at the residual's own RMS: noise is a part of the residual.
-    """
-    d = np.diff(r, n=3)
-    est = float(1.4826 * np.median(np.abs(d - np.median(d))) / math.sqrt(20))
-    return min(est, float(np.sqrt(np.mean(np.square(r)))))
-
-
-def ljung_box(r: np.ndarray, lags: int = 20) -> tuple[float, float]:
-    """(Q, p-value) of the Ljung-Box whiteness test."""
-    from scipy.stats import chi2
-
-    x = r - r.mean()
-    n = x.size
-    den = float(x @ x)
-    if den == 0.0 or n <= lags + 1:
-        return 0.0, 1.0
-    rho = np.array([float(x[:-k] @ x[k:]) / den for k in range(1, lags + 1)])
-    q = n * (n + 2) * float(np.sum(rho**2 / (n - np.arange(1, lags + 1))))
-    return q, float(chi2.sf(q, lags))
-
-
-def _shaft_speed(model, sim) -> dict[str, float]:
-    """Mean speed [rad/s] of every shaft in a simulated run."""
-    out = {}
-    for n in model.shafts:
-        try:
-            out[n] = float(np.mean(sim[f"{n}.w"]))
-        except KeyError:
-            continue
-    return out
-
-
-def analyse(model, record, fit_res, probes: Sequence[str]) -> dict[str, Any]:
-    """Residual statistics, labelled spectral peaks, whiteness and regressor correlations."""
-    from .signal import spectrum
-
-    sim = fit_res.sim
-    speeds = _shaft_speed(model, sim)
-    t = record.t
-    out: dict[str, Any] = {"probes": {}, "shafts": {k: {"speed": v, "frequency": v /
-                                                        (2 * math.pi)}
-                                                    for k, v in speeds.items()}}
-    regressors: dict[str, np.ndarray] = {"time": t - t.mean()}
-    for p in probes:
-        regressors[f"model {p}"] = np.asarray(sim[p])
-    for n in speeds:
-        regressors[f"sign({n}.w)"] = np.sign(np.asarray(sim[f"{n}.w"]))
-    for p in probes:
-        r = np.asarray(fit_res.residuals[p])
-        x = np.asarray(record[p])
-        sigma = noise_sigma(r)
-        f, amp = spectrum(t, r)
-        floor = float(np.median(amp[1:])) if amp.size > 2 else 0.0
-        order = np.argsort(amp)[::-1]
-        peaks = []
-        for k in order[: 200]:
-            if f[k] <= 2 / (t[-1] - t[0]) or amp[k] < 8 * floor:
-                continue
-            if any(abs(f[k] - q["frequency"]) < 3 / (t[-1] - t[0]) for q in peaks):
-                continue
-            label = {}
-            for n, sp in out["shafts"].items():
-                w = np.asarray(sim[f"{n}.w"])
-                if np.std(w) > 0.02 * abs(np.mean(w)):
-                    continue  # the speed changes: only the angle spectrum can name orders
-                ratio = f[k] / sp["frequency"] if sp["frequency"] > 0 else 0
-                kk = round(ratio)
-                if kk >= 1 and abs(ratio - kk) < ORDER_TOL * kk:
-                    label[n] = kk
-            peaks.append({"frequency": float(f[k]), "amplitude": float(amp[k]),
-                          "orders": label})
-            if len(peaks) == 6:
-                break
-        peaks += _order_peaks(sim, speeds, t, r, peaks)
-        q, pval = ljung_box(r)
-        corr = {}
-        for name, g in regressors.items():
-            if np.std(g) > 0 and np.std(r) > 0:
-                corr[name] = float(np.corrcoef(g, r)[0, 1])
-        for n in speeds:
-            phi = np.asarray(sim[f"{n}.phi"])
-            for pk in peaks:
-                k = pk["orders"].get(n)
-                if k:
-                    c = np.column_stack([np.sin(k * phi), np.cos(k * phi)])
-                    coef = np.linalg.lstsq(c, r - r.mean(), rcond=None)[0]
-                    corr[f"harmonic {k} of {n}.phi"] = float(
-                        np.sqrt(np.mean((c @ coef) ** 2)) / max(np.std(r), 1e-300))
-        out["probes"][p] = {
-            "rms": float(np.sqrt(np.mean(r**2))),
-            "nrmse": float(np.sqrt(np.mean(r**2)) / max(np.std(x), 1e-300)),
-            "noise_sigma": sigma, "peaks": peaks,
-            "whiteness": {"ljung_box_q": q, "p_value": pval, "white": pval > 1e-3},
-            "correlation": corr,
-        }
-    return out
-
-
-def _order_peaks(sim, speeds, t, r, known) -> list[dict[str, Any]]:
-    """Peaks of the residual's spectrum in the shaft angle (order tracking): resampled on a
-    uniform angle grid, a harmonic of the angle is a line at its order even while the speed
-    changes, where the time spectrum smears it."""
-    out = []
-    for n in speeds:
-        phi_all = np.asarray(sim[f"{n}.phi"])
-        w = np.asarray(sim[f"{n}.w"])
-        # from the moment the shaft turns steadily forward (a start from rest is skipped)
-        moving = w > 0.1 * max(float(np.max(w)), 1e-300)
-        if not moving.any():
-            continue
-        first = int(np.argmax(moving))
-        phi, rr = phi_all[first:], r[first:]
-        if phi[-1] - phi[0] < 4 * math.pi or not np.all(np.diff(phi) > 0):
-            continue
-        m = phi.size
-        grid = np.linspace(phi[0], phi[-1], m)
-        x = np.interp(grid, phi, rr)
-        x = x - np.polyval(np.polyfit(grid, x, 1), grid)
-        win = 0.5 - 0.5 * np.cos(2 * math.pi * np.arange(m) / m)
-        amp = np.abs(np.fft.rfft(x * win)) * 2 / win.sum()
-        orders = np.fft.rfftfreq(m, (grid[1] - grid[0]) / (2 * math.pi))
-        floor = float(np.median(amp[1:])) if amp.size > 2 else 0.0
-        for k in np.argsort(amp)[::-1][:200]:
-            kk = round(orders[k])
-            if kk < 1 or abs(orders[k] - kk) > ORDER_TOL * kk or amp[k] < 8 * floor:
-                continue
-            if any(p["orders"].get(n) == kk for p in known + out):
-                continue
-            out.append({"frequency": float(kk * speeds[n] / (2 * math.pi)),
-                        "amplitude": float(amp[k]), "orders": {n: kk}, "domain": "angle"})
-            if len(out) == 4:
-                break
-    return out
-
-
-def _orders(analysis: Mapping[str, Any]) -> dict[str, list[int]]:
-    found: dict[str, list[int]] = {}
-    for pr in analysis["probes"].values():
-        for pk in pr["peaks"]:
-            for n, k in pk["orders"].items():
-                found.setdefault(n, [])
-                if k not in found[n]:
-                    found[n].append(k)
-    return found
 
 
 # --------------------------------------------------------------------- the engine
@@ -303,8 +58,8 @@ class _State:
 
 
 def _compile(raw):
-    from .model import compile as compile_model
-    from .netlist import build
+    from circuitsim.compiler.model import compile as compile_model
+    from circuitsim.netlist.load import build
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
@@ -398,10 +153,10 @@ def diagnose(netlist, record, free: Sequence[str] = (), *, probes: Sequence[str]
     """
     import time
 
-    from . import effects
-    from .fit import fit_record, slow_features, smoothing_windows
-    from .model import compile as compile_model
-    from .netlist import Netlist, load
+    from circuitsim.compiler.model import compile as compile_model
+    from circuitsim.loop import effects
+    from circuitsim.loop.fit import fit_record, slow_features, smoothing_windows
+    from circuitsim.netlist.load import Netlist, load
 
     say = progress or (lambda msg: None)
     clock = {"start": time.perf_counter()}
@@ -676,9 +431,9 @@ def diagnose_features(netlist, features, free: Sequence[str] = (), *,
     """
     import time
 
-    from . import effects
-    from .fit import fit_features
-    from .netlist import Netlist, load
+    from circuitsim.loop import effects
+    from circuitsim.loop.fit import fit_features
+    from circuitsim.netlist.load import Netlist, load
 
     say = progress or (lambda msg: None)
     start = time.perf_counter()
@@ -792,219 +547,18 @@ def _with_values(raw, params: Mapping[str, float]):
 
 
 def build_raw(raw):
-    from .netlist import build
+    from circuitsim.netlist.load import build
 
     return build(raw)
 
 
 def load_raw_netlist(raw):
     """Type a raw netlist (for candidate generation on the current, patched netlist)."""
-    from .netlist import build
+    from circuitsim.netlist.load import build
 
     return build(raw)
 
 
 # ---------------------------------------------------------------------------- output
 
-def _figures(diag: Diagnosis, probes: Sequence[str]) -> dict[str, bytes]:
-    import matplotlib
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    from .signal import spectrum
-
-    rec = diag.record
-    t = rec.t
-    out = {}
-    fig, axes = plt.subplots(len(probes), 1, figsize=(8, 2.6 * len(probes)), squeeze=False)
-    zoom = t >= t[-1] - 0.1 * (t[-1] - t[0])
-    for ax, p in zip(axes[:, 0], probes, strict=True):
-        ax.plot(t[zoom], rec[p][zoom], "k.", ms=2, label="measured")
-        ax.plot(t[zoom], diag.fit_before.sim[p][zoom], lw=1, label="model before")
-        ax.plot(t[zoom], diag.fit_after.sim[p][zoom], lw=1, label="model after")
-        ax.set_ylabel(p)
-        ax.legend(fontsize=7)
-        ax.grid(alpha=0.3)
-    axes[-1, 0].set_xlabel("time [s]")
-    out["waveforms"] = _png_bytes(fig)
-    fig, axes = plt.subplots(len(probes), 1, figsize=(8, 2.6 * len(probes)), squeeze=False)
-    shafts = diag.analysis_before.get("shafts", {})
-    for ax, p in zip(axes[:, 0], probes, strict=True):
-        for label, fr in (("before", diag.fit_before), ("after", diag.fit_after)):
-            f, a = spectrum(t, np.asarray(fr.residuals[p]))
-            ax.semilogy(f[1:], a[1:] + 1e-300, lw=0.8, label=f"residual {label}")
-        for pk in diag.analysis_before["probes"][p]["peaks"]:
-            lab = ", ".join(f"{k}x {n}" for n, k in pk["orders"].items())
-            if lab:
-                ax.annotate(lab, (pk["frequency"], pk["amplitude"]), fontsize=7)
-        ax.set_ylabel(f"{p} residual")
-        ax.grid(alpha=0.3, which="both")
-        ax.legend(fontsize=7)
-        if shafts:
-            ax.set_title("orders of " + ", ".join(f"{n} ({v['frequency']:.4g} Hz)"
-                                                  for n, v in shafts.items()), fontsize=8)
-    axes[-1, 0].set_xlabel("frequency [Hz]")
-    out["spectra"] = _png_bytes(fig)
-    return out
-
-
-def _feature_figure(diag: Diagnosis) -> bytes:
-    """Measured features (with their sigmas) against the model before and after, one panel
-    per feature (their units differ)."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    before, after = diag.fit_before, diag.fit_after
-    labels = list(before.measured)
-    fig, axes = plt.subplots(1, len(labels), figsize=(3.2 * len(labels), 3.0), squeeze=False)
-    for ax, lab in zip(axes[0], labels, strict=True):
-        sigma = before.sigma.get(lab) or 0.0
-        ax.errorbar([0], [before.measured[lab]], yerr=[sigma], fmt="ko", capsize=4,
-                    label="measured")
-        ax.plot([1], [before.predicted[lab]], "o", label="model before")
-        ax.plot([2], [after.predicted[lab]], "s", label="model after")
-        ax.set_xticks([0, 1, 2], ["measured", "before", "after"], fontsize=8)
-        ax.set_title(lab, fontsize=8)
-        ax.grid(alpha=0.3)
-    axes[0, 0].legend(fontsize=7)
-    return _png_bytes(fig)
-
-
-def _png_bytes(fig) -> bytes:
-    """The figure as PNG bytes (for embedding); the figure is closed."""
-    import matplotlib.pyplot as plt
-
-    fig.tight_layout()
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=100)
-    plt.close(fig)
-    return buf.getvalue()
-
-
-def _png(data: bytes) -> str:
-    return f'<img src="data:image/png;base64,{base64.b64encode(data).decode()}">'
-
-
-def write_html(diag: Diagnosis, path: str, title: str = "circuitsim diagnosis") -> None:
-    """The report as one self-contained HTML page: summary, effects table, plots (measured
-    vs model before and after; for a record also the residual spectra)."""
-    if diag.record is not None:
-        figs = _figures(diag, list(diag.errors_before))
-        plots = (f"<h2>Measured and model</h2>{_png(figs['waveforms'])}"
-                 f"<h2>Residual spectra</h2>{_png(figs['spectra'])}")
-        crit = "&Delta;BIC"
-    else:
-        plots = f"<h2>Measured features and model</h2>{_png(_feature_figure(diag))}"
-        crit = "&chi;&sup2; after"
-
-    def evidence(a: Accepted) -> str:
-        e = a.evidence
-        return f"{e['delta_bic']:.1f}" if "delta_bic" in e else f"{e.get('chi2_after', 0):.3g}"
-
-    rows = "".join(
-        f"<tr><td>{i + 1}</td><td>{html.escape(a.effect)}</td><td>{html.escape(a.target)}</td>"
-        f"<td>{html.escape(', '.join(f'{k} = {v:.5g}' for k, v in a.parameters.items()))}</td>"
-        f"<td>{html.escape(', '.join(f'{k}: {v:.2g}' if v is not None else f'{k}: n/a' for k, v in a.stderr.items()))}</td>"
-        f"<td>{a.error_after:.4g}</td><td>{evidence(a)}</td></tr>"
-        for i, a in enumerate(diag.effects))
-    body = f"""<!doctype html><html><head><meta charset="utf-8"><title>{html.escape(title)}</title>
-<style>body{{font-family:sans-serif;max-width:60em;margin:auto}}td,th{{padding:2px 8px}}</style>
-</head><body><h1>{html.escape(title)}</h1>
-<p>{html.escape(diag.summary())}</p>
-<p>Error (RMS over probes of NRMSE): before {diag.error_before:.5g}, after {diag.error_after:.5g}.</p>
-<table border="1"><tr><th>#</th><th>effect</th><th>target</th><th>parameters</th><th>stderr</th>
-<th>error after</th><th>{crit}</th></tr>{rows}</table>
-<p>{'<br>'.join(html.escape(s) for s in diag.indistinct)}</p>
-{plots}
-</body></html>"""
-    _atomic_text(path, body)
-
-
-def _atomic_text(path: str, text: str) -> None:
-    d = os.path.dirname(os.path.abspath(path)) or "."
-    fd, tmp = tempfile.mkstemp(dir=d, prefix=".circuitsim-")
-    with os.fdopen(fd, "w", encoding="utf-8") as fh:
-        fh.write(text)
-    os.replace(tmp, path)
-
-
-def add_cli(sub) -> None:
-    d = sub.add_parser("diagnose", help="trace the residual against measured data to a "
-                       "physical effect the model lacks")
-    d.add_argument("netlist")
-    d.add_argument("data", help="CSV record: time + one column per probe [SI]")
-    d.add_argument("--free", default="", help="declared free parameters, comma-separated")
-    d.add_argument("--probes", help="probe columns to use, comma-separated (default: all)")
-    d.add_argument("--report", help="diag.json")
-    d.add_argument("--html", help="diag.html with plots")
-    d.add_argument("--write-netlist", help="the netlist with the effects added")
-    d.add_argument("--time", default="time", help="name of the time column [s]")
-    d.add_argument("--inputs", default="", help="other columns of the CSV that are not "
-                   "probes (measured inputs, unused signals), comma-separated")
-    d.add_argument("--max-effects", type=int, default=MAX_EFFECTS)
-    d.add_argument("--set", action="append", metavar="NAME=VALUE",
-                   help="override a parameter (units checked); for a declared free one, its "
-                        "start value. The written netlist carries the value")
-    d.add_argument("--quiet", action="store_true")
-    d.set_defaults(func=cmd_diagnose)
-
-
-def cmd_diagnose(args) -> int:
-    from .data import load_record
-    from .model import compile as compile_model
-    from .netlist import load
-
-    net = load(args.netlist)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        model = compile_model(net)
-    free = [s.strip() for s in args.free.split(",") if s.strip()]
-    from .cli import _parse_sets
-
-    overrides = _parse_sets(model, args.set or [])
-    say = None if args.quiet else (lambda m: print(f"  {m}", file=sys.stderr))
-    if str(args.data).endswith((".yaml", ".yml")):
-        from .data import load_features
-
-        feats = load_features(args.data)
-        feats.check(model)
-        diag = diagnose_features(net, feats, free, max_effects=args.max_effects,
-                                 params=overrides, progress=say)
-        args.html = None if args.html is None else args.html
-    else:
-        inputs = [t.label.split(":")[-1] for c in net.components for t in c.tables]
-        inputs += [s.strip() for s in args.inputs.split(",") if s.strip()]
-        record = load_record(args.data, model.probe_names, inputs=inputs, time=args.time)
-        probes = [s.strip() for s in args.probes.split(",")] if args.probes else None
-        diag = diagnose(net, record, free, probes=probes, max_effects=args.max_effects,
-                        params=overrides, progress=say)
-    print(diag.summary())
-    for a in diag.effects:
-        print(f"  + {a.effect} on {a.target}: " + ", ".join(
-            f"{k} = {v:.5g}" + (f" +- {a.stderr[k]:.2g}" if a.stderr.get(k) else "")
-            for k, v in a.parameters.items()) + f"  (error {a.error_after:.4g})")
-    final = diag.final_parameters()
-    if final:
-        print("final fit (all free parameters together):")
-        for n, v in final.items():
-            print(f"  {n} = {v['estimate']:.6g}" +
-                  (f" +- {v['stderr']:.2g}" if v["stderr"] is not None else ""))
-    for s in diag.indistinct:
-        print(f"  ! {s}")
-    if args.report:
-        _atomic_text(args.report, json.dumps(diag.as_dict(), indent=1))
-        print(f"report: {args.report}")
-    if args.html:
-        write_html(diag, args.html, f"diagnosis of {net.title}")
-        print(f"html: {args.html}")
-    if args.write_netlist:
-        header = (f"{net.title}, with the effects circuitsim diagnose found in {args.data}:\n" +
-                  "\n".join(f"- {a.effect} on {a.target}: {a.evidence['what']}"
-                            for a in diag.effects) +
-                  f"\nerror {diag.error_before:.4g} -> {diag.error_after:.4g}")
-        diag.raw.dump(args.write_netlist, header)
-        print(f"netlist: {args.write_netlist}")
-    return 0

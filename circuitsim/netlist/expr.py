@@ -13,7 +13,7 @@ import re
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
-from .units import Dim, compatible, dim_mul, dim_pow, dimensionless, unit_info
+from circuitsim.units import Dim, compatible, dim_mul, dim_pow, dimensionless, unit_info
 
 FUNCTIONS: dict[str, tuple[int, Callable[..., float]]] = {
     "sin": (1, math.sin), "cos": (1, math.cos), "tan": (1, math.tan),
@@ -261,7 +261,7 @@ def to_sympy(node: Node, symbols: Mapping[str, object]):
     """
     import sympy as sp
 
-    from .errors import NetlistError
+    from circuitsim.errors import NetlistError
 
     out = _to_sympy(node, symbols)
     if isinstance(out, sp.Basic) and out.has(sp.zoo, sp.nan, sp.oo, -sp.oo, sp.I):

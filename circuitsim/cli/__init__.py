@@ -1,0 +1,5 @@
+"""The ``circuitsim`` command: thin verbs over the Python API."""
+
+from circuitsim.cli.main import main
+
+__all__ = ["main"]

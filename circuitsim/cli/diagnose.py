@@ -1,0 +1,94 @@
+"""``circuitsim diagnose``."""
+
+from __future__ import annotations
+
+import json
+import sys
+import warnings
+
+from circuitsim.files import atomic_write
+from circuitsim.loop.diagnose.engine import MAX_EFFECTS, diagnose, diagnose_features
+from circuitsim.report.diagnosis import write_html
+
+
+def _atomic_text(path: str, text: str) -> None:
+    atomic_write(path, text, make_dirs=False)
+
+
+def add_cli(sub) -> None:
+    d = sub.add_parser("diagnose", help="trace the residual against measured data to a "
+                       "physical effect the model lacks")
+    d.add_argument("netlist")
+    d.add_argument("data", help="CSV record: time + one column per probe [SI]")
+    d.add_argument("--free", default="", help="declared free parameters, comma-separated")
+    d.add_argument("--probes", help="probe columns to use, comma-separated (default: all)")
+    d.add_argument("--report", help="diag.json")
+    d.add_argument("--html", help="diag.html with plots")
+    d.add_argument("--write-netlist", help="the netlist with the effects added")
+    d.add_argument("--time", default="time", help="name of the time column [s]")
+    d.add_argument("--inputs", default="", help="other columns of the CSV that are not "
+                   "probes (measured inputs, unused signals), comma-separated")
+    d.add_argument("--max-effects", type=int, default=MAX_EFFECTS)
+    d.add_argument("--set", action="append", metavar="NAME=VALUE",
+                   help="override a parameter (units checked); for a declared free one, its "
+                        "start value. The written netlist carries the value")
+    d.add_argument("--quiet", action="store_true")
+    d.set_defaults(func=cmd_diagnose)
+
+
+def cmd_diagnose(args) -> int:
+    from circuitsim.compiler.model import compile as compile_model
+    from circuitsim.loop.record import load_record
+    from circuitsim.netlist.load import load
+
+    net = load(args.netlist)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        model = compile_model(net)
+    free = [s.strip() for s in args.free.split(",") if s.strip()]
+    from circuitsim.cli.main import _parse_sets
+
+    overrides = _parse_sets(model, args.set or [])
+    say = None if args.quiet else (lambda m: print(f"  {m}", file=sys.stderr))
+    if str(args.data).endswith((".yaml", ".yml")):
+        from circuitsim.loop.record import load_features
+
+        feats = load_features(args.data)
+        feats.check(model)
+        diag = diagnose_features(net, feats, free, max_effects=args.max_effects,
+                                 params=overrides, progress=say)
+        args.html = None if args.html is None else args.html
+    else:
+        inputs = [t.label.split(":")[-1] for c in net.components for t in c.tables]
+        inputs += [s.strip() for s in args.inputs.split(",") if s.strip()]
+        record = load_record(args.data, model.probe_names, inputs=inputs, time=args.time)
+        probes = [s.strip() for s in args.probes.split(",")] if args.probes else None
+        diag = diagnose(net, record, free, probes=probes, max_effects=args.max_effects,
+                        params=overrides, progress=say)
+    print(diag.summary())
+    for a in diag.effects:
+        print(f"  + {a.effect} on {a.target}: " + ", ".join(
+            f"{k} = {v:.5g}" + (f" +- {a.stderr[k]:.2g}" if a.stderr.get(k) else "")
+            for k, v in a.parameters.items()) + f"  (error {a.error_after:.4g})")
+    final = diag.final_parameters()
+    if final:
+        print("final fit (all free parameters together):")
+        for n, v in final.items():
+            print(f"  {n} = {v['estimate']:.6g}" +
+                  (f" +- {v['stderr']:.2g}" if v["stderr"] is not None else ""))
+    for s in diag.indistinct:
+        print(f"  ! {s}")
+    if args.report:
+        _atomic_text(args.report, json.dumps(diag.as_dict(), indent=1))
+        print(f"report: {args.report}")
+    if args.html:
+        write_html(diag, args.html, f"diagnosis of {net.title}")
+        print(f"html: {args.html}")
+    if args.write_netlist:
+        header = (f"{net.title}, with the effects circuitsim diagnose found in {args.data}:\n" +
+                  "\n".join(f"- {a.effect} on {a.target}: {a.evidence['what']}"
+                            for a in diag.effects) +
+                  f"\nerror {diag.error_before:.4g} -> {diag.error_after:.4g}")
+        diag.raw.dump(args.write_netlist, header)
+        print(f"netlist: {args.write_netlist}")
+    return 0

@@ -1,0 +1,2 @@
+"""Closing the loop with measured data: records, fits, the effect catalog, diagnosis,
+BLDC identification."""

@@ -1,0 +1,163 @@
+"""Stage: analyse a fit's residual (noise floor, whiteness, spectral lines, shaft orders)."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+import numpy as np
+
+ORDER_TOL = 0.03  # a spectral peak is order k when |f/f_shaft - k| < ORDER_TOL k
+
+
+def noise_sigma(r: np.ndarray) -> float:
+    """White-noise level of a residual from its third differences (robust: median).
+
+    Differencing removes smooth structure (a tone at 2 % of the sample rate keeps 0.2 % of
+    its size after three differences) and multiplies white noise's variance by C(6, 3) = 20.
+    A tone near the Nyquist frequency is amplified instead (up to 64/20 in variance), so the
+    estimate is capped at the residual's own RMS: noise is a part of the residual.
+    """
+    d = np.diff(r, n=3)
+    est = float(1.4826 * np.median(np.abs(d - np.median(d))) / math.sqrt(20))
+    return min(est, float(np.sqrt(np.mean(np.square(r)))))
+
+
+def ljung_box(r: np.ndarray, lags: int = 20) -> tuple[float, float]:
+    """(Q, p-value) of the Ljung-Box whiteness test."""
+    from scipy.stats import chi2
+
+    x = r - r.mean()
+    n = x.size
+    den = float(x @ x)
+    if den == 0.0 or n <= lags + 1:
+        return 0.0, 1.0
+    rho = np.array([float(x[:-k] @ x[k:]) / den for k in range(1, lags + 1)])
+    q = n * (n + 2) * float(np.sum(rho**2 / (n - np.arange(1, lags + 1))))
+    return q, float(chi2.sf(q, lags))
+
+
+def _shaft_speed(model, sim) -> dict[str, float]:
+    """Mean speed [rad/s] of every shaft in a simulated run."""
+    out = {}
+    for n in model.shafts:
+        try:
+            out[n] = float(np.mean(sim[f"{n}.w"]))
+        except KeyError:
+            continue
+    return out
+
+
+def analyse(model, record, fit_res, probes: Sequence[str]) -> dict[str, Any]:
+    """Residual statistics, labelled spectral peaks, whiteness and regressor correlations."""
+    from circuitsim.signal import spectrum
+
+    sim = fit_res.sim
+    speeds = _shaft_speed(model, sim)
+    t = record.t
+    out: dict[str, Any] = {"probes": {}, "shafts": {k: {"speed": v, "frequency": v /
+                                                        (2 * math.pi)}
+                                                    for k, v in speeds.items()}}
+    regressors: dict[str, np.ndarray] = {"time": t - t.mean()}
+    for p in probes:
+        regressors[f"model {p}"] = np.asarray(sim[p])
+    for n in speeds:
+        regressors[f"sign({n}.w)"] = np.sign(np.asarray(sim[f"{n}.w"]))
+    for p in probes:
+        r = np.asarray(fit_res.residuals[p])
+        x = np.asarray(record[p])
+        sigma = noise_sigma(r)
+        f, amp = spectrum(t, r)
+        floor = float(np.median(amp[1:])) if amp.size > 2 else 0.0
+        order = np.argsort(amp)[::-1]
+        peaks = []
+        for k in order[: 200]:
+            if f[k] <= 2 / (t[-1] - t[0]) or amp[k] < 8 * floor:
+                continue
+            if any(abs(f[k] - q["frequency"]) < 3 / (t[-1] - t[0]) for q in peaks):
+                continue
+            label = {}
+            for n, sp in out["shafts"].items():
+                w = np.asarray(sim[f"{n}.w"])
+                if np.std(w) > 0.02 * abs(np.mean(w)):
+                    continue  # the speed changes: only the angle spectrum can name orders
+                ratio = f[k] / sp["frequency"] if sp["frequency"] > 0 else 0
+                kk = round(ratio)
+                if kk >= 1 and abs(ratio - kk) < ORDER_TOL * kk:
+                    label[n] = kk
+            peaks.append({"frequency": float(f[k]), "amplitude": float(amp[k]),
+                          "orders": label})
+            if len(peaks) == 6:
+                break
+        peaks += _order_peaks(sim, speeds, t, r, peaks)
+        q, pval = ljung_box(r)
+        corr = {}
+        for name, g in regressors.items():
+            if np.std(g) > 0 and np.std(r) > 0:
+                corr[name] = float(np.corrcoef(g, r)[0, 1])
+        for n in speeds:
+            phi = np.asarray(sim[f"{n}.phi"])
+            for pk in peaks:
+                k = pk["orders"].get(n)
+                if k:
+                    c = np.column_stack([np.sin(k * phi), np.cos(k * phi)])
+                    coef = np.linalg.lstsq(c, r - r.mean(), rcond=None)[0]
+                    corr[f"harmonic {k} of {n}.phi"] = float(
+                        np.sqrt(np.mean((c @ coef) ** 2)) / max(np.std(r), 1e-300))
+        out["probes"][p] = {
+            "rms": float(np.sqrt(np.mean(r**2))),
+            "nrmse": float(np.sqrt(np.mean(r**2)) / max(np.std(x), 1e-300)),
+            "noise_sigma": sigma, "peaks": peaks,
+            "whiteness": {"ljung_box_q": q, "p_value": pval, "white": pval > 1e-3},
+            "correlation": corr,
+        }
+    return out
+
+
+def _order_peaks(sim, speeds, t, r, known) -> list[dict[str, Any]]:
+    """Peaks of the residual's spectrum in the shaft angle (order tracking): resampled on a
+    uniform angle grid, a harmonic of the angle is a line at its order even while the speed
+    changes, where the time spectrum smears it."""
+    out = []
+    for n in speeds:
+        phi_all = np.asarray(sim[f"{n}.phi"])
+        w = np.asarray(sim[f"{n}.w"])
+        # from the moment the shaft turns steadily forward (a start from rest is skipped)
+        moving = w > 0.1 * max(float(np.max(w)), 1e-300)
+        if not moving.any():
+            continue
+        first = int(np.argmax(moving))
+        phi, rr = phi_all[first:], r[first:]
+        if phi[-1] - phi[0] < 4 * math.pi or not np.all(np.diff(phi) > 0):
+            continue
+        m = phi.size
+        grid = np.linspace(phi[0], phi[-1], m)
+        x = np.interp(grid, phi, rr)
+        x = x - np.polyval(np.polyfit(grid, x, 1), grid)
+        win = 0.5 - 0.5 * np.cos(2 * math.pi * np.arange(m) / m)
+        amp = np.abs(np.fft.rfft(x * win)) * 2 / win.sum()
+        orders = np.fft.rfftfreq(m, (grid[1] - grid[0]) / (2 * math.pi))
+        floor = float(np.median(amp[1:])) if amp.size > 2 else 0.0
+        for k in np.argsort(amp)[::-1][:200]:
+            kk = round(orders[k])
+            if kk < 1 or abs(orders[k] - kk) > ORDER_TOL * kk or amp[k] < 8 * floor:
+                continue
+            if any(p["orders"].get(n) == kk for p in known + out):
+                continue
+            out.append({"frequency": float(kk * speeds[n] / (2 * math.pi)),
+                        "amplitude": float(amp[k]), "orders": {n: kk}, "domain": "angle"})
+            if len(out) == 4:
+                break
+    return out
+
+
+def _orders(analysis: Mapping[str, Any]) -> dict[str, list[int]]:
+    found: dict[str, list[int]] = {}
+    for pr in analysis["probes"].values():
+        for pk in pr["peaks"]:
+            for n, k in pk["orders"].items():
+                found.setdefault(n, [])
+                if k not in found[n]:
+                    found[n].append(k)
+    return found

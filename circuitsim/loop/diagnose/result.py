@@ -1,0 +1,99 @@
+"""The result objects of a diagnosis: plain data, a summary, a JSON form, no plotting."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from circuitsim.errors import CircuitsimError
+
+
+class DiagnosisError(CircuitsimError):
+    """The diagnosis cannot run on this record or netlist."""
+
+
+@dataclass
+class Accepted:
+    effect: str
+    target: str
+    parameters: dict[str, float]
+    stderr: dict[str, float | None]
+    error_after: float
+    evidence: dict[str, Any]
+
+
+@dataclass
+class Diagnosis:
+    """What the diagnosis found; ``as_dict`` is the diag.json report."""
+
+    error_before: float
+    error_after: float
+    errors_before: dict[str, float]
+    errors_after: dict[str, float]
+    effects: list[Accepted]
+    indistinct: list[str]
+    remaining: dict[str, Any]
+    analysis_before: dict[str, Any]
+    analysis_after: dict[str, Any]
+    raw: Any = field(repr=False, default=None)
+    fit_before: Any = field(repr=False, default=None)
+    fit_after: Any = field(repr=False, default=None)
+    record: Any = field(repr=False, default=None)
+    timings: dict[str, float] = field(default_factory=dict)
+    rejected: list[dict[str, Any]] = field(default_factory=list)
+
+    def as_dict(self) -> dict[str, Any]:
+        return _clean({
+            "error_before": self.error_before, "error_after": self.error_after,
+            "errors": {"before": self.errors_before, "after": self.errors_after},
+            "effects": [{"effect": a.effect, "target": a.target, "parameters": a.parameters,
+                         "stderr": a.stderr, "error_after": a.error_after,
+                         "evidence": a.evidence} for a in self.effects],
+            "indistinct": self.indistinct, "remaining": self.remaining,
+            "analysis_before": self.analysis_before, "analysis_after": self.analysis_after,
+            "considered_not_accepted": self.rejected, "timings": self.timings,
+            "final_fit": self.final_parameters(),
+            "summary": self.summary(),
+        })
+
+    def final_parameters(self) -> dict[str, dict[str, float | None]]:
+        """Every free parameter of the final model (declared ones and those of the accepted
+        effects, refitted together): start, estimate and standard error [SI]. An effect's
+        ``parameters`` are its values when it was accepted; later effects move them.
+        ``before``: a declared parameter's estimate in the declared model (None for the
+        effects' parameters, which that model lacks)."""
+        fit = self.fit_after
+        if fit is None:
+            return {}
+        before = self.fit_before.estimate if self.fit_before is not None else {}
+        return {n: {"before": before.get(n), "estimate": fit.estimate[n],
+                    "stderr": fit.stderr[n] if math.isfinite(fit.stderr[n]) else None}
+                for n in fit.free}
+
+    def summary(self) -> str:
+        if not self.effects:
+            head = "nothing significant: no effect of the catalog explains the residual"
+        else:
+            head = "; ".join(f"{a.effect} on {a.target} " +
+                             ", ".join(f"{k} = {v:.4g}" for k, v in a.parameters.items())
+                             for a in self.effects)
+        tail = ("; structure remains: " + self.remaining["note"]) if \
+            self.remaining.get("structure") else ""
+        return f"{head} (error {self.error_before:.4g} -> {self.error_after:.4g}){tail}"
+
+
+def _clean(obj: Any) -> Any:
+    if isinstance(obj, dict):
+        return {str(k): _clean(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_clean(v) for v in obj]
+    if isinstance(obj, (np.floating, float)):
+        return float(obj) if math.isfinite(obj) else None
+    if isinstance(obj, np.integer):
+        return int(obj)
+    if isinstance(obj, np.bool_):
+        return bool(obj)
+    return obj

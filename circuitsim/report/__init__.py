@@ -1,0 +1,1 @@
+"""Plots and HTML reports: the only part of circuitsim that imports matplotlib."""

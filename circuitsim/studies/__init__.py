@@ -1,0 +1,1 @@
+"""Studies over the pipeline: parameter and topology sweeps."""
