@@ -7,7 +7,8 @@ import sys
 import warnings
 
 from circuitsim.files import atomic_write
-from circuitsim.loop.diagnose.engine import MAX_EFFECTS, diagnose, diagnose_features
+from circuitsim.loop.diagnose import diagnose, diagnose_features
+from circuitsim.loop.diagnose.context import MAX_EFFECTS
 from circuitsim.report.diagnosis import write_html
 
 

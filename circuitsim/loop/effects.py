@@ -12,7 +12,7 @@ that their null value is an exact zero and their parameters may take either sign
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -20,8 +20,9 @@ from circuitsim.errors import SourceLoc
 from circuitsim.netlist.load import Netlist, RawNetlist
 
 CATALOG_IDS = ("series-resistance", "source-resistance", "brush-drop", "coulomb-friction",
-               "viscous-friction", "cogging", "emf-harmonic", "inductor-saturation",
-               "resistance-drift", "force-offset")
+               "stribeck-friction", "viscous-friction", "cogging", "unbalance", "emf-harmonic",
+               "inductor-saturation", "resistance-drift", "force-offset", "sensor-gain",
+               "sensor-offset")
 
 
 @dataclass(frozen=True)
@@ -53,6 +54,9 @@ class Candidate:
             out.params[name] = (repr(float(start)), loc)
         self.edit(out)
         return out
+
+
+STRIBECK_SPEED = 1.0  # [rad/s] below which the breakaway peak acts
 
 
 def _pname(effect: str, target: str, what: str) -> str:
@@ -106,28 +110,40 @@ def _mechanical_nodes(net: Netlist) -> list[tuple[str, str]]:
             if d in ("rotational", "translational") and n != "fixed"]
 
 
-def candidates(net: Netlist, orders: Mapping[str, list[int]] | None = None) -> list[Candidate]:
+def candidates(net: Netlist, orders: Mapping[str, list[int]] | None = None,
+               probes: Sequence[str] = ()) -> list[Candidate]:
     """Every candidate of the catalog for this netlist. ``orders``: harmonic orders per shaft
-    node found in the residual spectrum (for ``cogging`` and ``emf-harmonic``)."""
+    node found in the residual (for ``cogging`` and ``emf-harmonic``); ``probes``: the
+    measured probes (for the sensor effects)."""
     orders = orders or {}
+    return [*_electrical(net), *_converter_effects(net, orders), *_mechanical(net, orders),
+            *_component_laws(net), *_sensors(probes)]
+
+
+def _electrical(net: Netlist) -> list[Candidate]:
     out: list[Candidate] = []
     for t in _electrical_two_pins(net, exclude={"V", "I"}):
         p = _pname("series-resistance", t, "R")
-        out.append(Candidate("series-resistance", t, {p: (0.0, -1e3, 1e3)}, {},
+        out.append(Candidate("series-resistance", t, {p: (0.0, 0.0, 1e3)}, {},
                              f"a resistance R in series with {t}",
                              lambda r, t=t, p=p: _insert_series(r, t, f"SR_{t}",
                                                                 f"{p}*{t}.i"),
                              steps={p: 1e-3}))
     for t in _electrical_two_pins(net, kinds={"V"}):
         p = _pname("source-resistance", t, "R")
-        out.append(Candidate("source-resistance", t, {p: (0.0, -1e3, 1e3)}, {},
+        out.append(Candidate("source-resistance", t, {p: (0.0, 0.0, 1e3)}, {},
                              f"an internal resistance R of source {t}",
                              lambda r, t=t, p=p: _insert_series(r, t, f"RS_{t}",
                                                                 f"{p}*{t}.i"),
                              steps={p: 1e-3}))
+    return out
+
+
+def _converter_effects(net: Netlist, orders: Mapping[str, list[int]]) -> list[Candidate]:
+    out: list[Candidate] = []
     for t, shaft in _converters(net):
         p = _pname("brush-drop", t, "Vb")
-        out.append(Candidate("brush-drop", t, {p: (0.0, -50.0, 50.0)}, {"i_eps": 0.01},
+        out.append(Candidate("brush-drop", t, {p: (0.0, 0.0, 50.0)}, {"i_eps": 0.01},
                              f"a brush contact drop Vb*sign(i) in series with {t}",
                              lambda r, t=t, p=p: _insert_series(
                                  r, t, f"BD_{t}", f"{p}*tanh({t}.i/0.01)"), steps={p: 1e-2}))
@@ -141,6 +157,11 @@ def candidates(net: Netlist, orders: Mapping[str, list[int]] | None = None) -> l
                     r, t, f"EH{k}_{t}",
                     f"{s}.w*({a}*sin({k}*{s}.phi) + {b}*cos({k}*{s}.phi))"),
                 steps={a: 1e-4, b: 1e-4}))
+    return out
+
+
+def _mechanical(net: Netlist, orders: Mapping[str, list[int]]) -> list[Candidate]:
+    out: list[Candidate] = []
     for node, dom in _mechanical_nodes(net):
         rot = dom == "rotational"
         unit_f = "torque" if rot else "force"
@@ -169,24 +190,39 @@ def candidates(net: Netlist, orders: Mapping[str, list[int]] | None = None) -> l
                 ("shaft" if rot else "flange"): n, ("T" if rot else "F"): p}),
             steps={p: 1e-4 if rot else 1e-1}))
         if rot:
+            c_, s_ = _pname("stribeck-friction", node, "c"), _pname("stribeck-friction", node, "s")
+            out.append(Candidate(
+                "stribeck-friction", node, {c_: (0.0, 0.0, 1e4), s_: (0.0, 0.0, 1e4)}, {},
+                f"friction with a breakaway (Stribeck) peak at low speed on {node}",
+                lambda r, n=node, c_=c_, s_=s_: _add(r, {
+                    "name": f"SF_{n}", "type": "friction", "shaft": n, "tau_c": c_,
+                    "tau_brk": f"{c_} + {s_}", "w_brk": STRIBECK_SPEED}),
+                steps={c_: 1e-4, s_: 1e-4}))
             for k in orders.get(node, []):
                 a = _pname("cogging", f"{node}_{k}", "a")
                 b = _pname("cogging", f"{node}_{k}", "b")
                 out.append(Candidate(
-                    "cogging", node, {a: (0.0, -1e3, 1e3), b: (0.0, -1e3, 1e3)}, {"order": k},
-                    f"a cogging torque of order {k} on {node}" +
-                    (" (unbalance)" if k == 1 else ""),
+                    "unbalance" if k == 1 else "cogging", node,
+                    {a: (0.0, -1e3, 1e3), b: (0.0, -1e3, 1e3)}, {"order": k},
+                    f"an unbalance torque (once per revolution) on {node}" if k == 1 else
+                    f"a torque locked to the angle of {node} (cogging or load ripple) of "
+                    f"order {k}",
                     lambda r, n=node, k=k, a=a, b=b: _add(r, {
                         "name": f"CG{k}_{n}", "type": "cogging", "shaft": n,
                         "harmonics": [{"order": k, "amplitude": a, "phase": 0},
                                       {"order": k, "amplitude": b, "phase": 1.5707963267948966}]
                     }), steps={a: 1e-4, b: 1e-4}))
+    return out
+
+
+def _component_laws(net: Netlist) -> list[Candidate]:
+    out: list[Candidate] = []
     for c in net.components:
         if c.type in ("L", "inductor"):
             p = _pname("inductor-saturation", c.name, "Ipar")
             q = _pname("inductor-saturation", c.name, "ratio")
             out.append(Candidate(
-                "inductor-saturation", c.name, {p: (1e6, 1e-6, 1e6), q: (0.01, 1e-4, 1.0)}, {},
+                "inductor-saturation", c.name, {p: (1e6, 1e-6, 1e6), q: (0.3, 1e-3, 1.0)}, {},
                 f"saturation of {c.name}: inductance falling with current",
                 lambda r, n=c.name, p=p, q=q: _saturate(r, n, p, q),
                 grid=(3.0, 1.0, 0.3, 0.1)))
@@ -196,6 +232,49 @@ def candidates(net: Netlist, orders: Mapping[str, list[int]] | None = None) -> l
                 "resistance-drift", c.name, {p: (0.0, -10.0, 10.0)}, {},
                 f"{c.name} drifting with time (warming up)",
                 lambda r, n=c.name, p=p: _drift(r, n, p), steps={p: 1e-3}))
+    return out
+
+
+def _sensors(probes: Sequence[str]) -> list[Candidate]:
+    out: list[Candidate] = []
+    for name in probes:
+        g, o = _pname("sensor-gain", name, "g"), _pname("sensor-offset", name, "o")
+        out.append(Candidate("sensor-gain", name, {g: (0.0, -0.5, 0.5)}, {},
+                             f"a gain error g of the sensor of {name}: reads (1 + g) x",
+                             lambda r, n=name, g=g: _probe_patch(r, n, g, "(1 + {v})*({x})"),
+                             steps={g: 1e-3}))
+        out.append(Candidate("sensor-offset", name, {o: (0.0, -1e6, 1e6)}, {},
+                             f"an offset o of the sensor of {name}: reads x + o",
+                             lambda r, n=name, o=o: _probe_patch(r, n, o, "({x}) + {v}"),
+                             steps={o: 1e-3}))
+    return out
+
+
+def _probe_patch(raw: RawNetlist, probe: str, param: str, template: str) -> None:
+    """Rewrite a probe through a sensor law. A probe reads circuit quantities only, so the
+    parameter enters as the voltage of its own source on a node of its own."""
+    node = f"{param}_node"
+    _add(raw, {"name": f"S_{param}", "type": "V", "p": node, "n": "gnd", "V": param})
+    _add(raw, {"name": f"SL_{param}", "type": "R", "p": node, "n": "gnd", "R": 1.0})
+    text, loc = raw.probes[probe]
+    raw.probes[probe] = (template.format(v=f"{node}.v", x=text), loc)
+
+
+def declared_orders(raw: RawNetlist) -> dict[tuple[str, str], set[int]]:
+    """Harmonic orders the netlist already declares: (effect, target) -> orders. An
+    ``emf-harmonic`` or ``cogging`` candidate of such an order re-tunes a declared term."""
+    out: dict[tuple[str, str], set[int]] = {}
+    for entry, _, _ in raw.comps:
+        harmonics = entry.get("harmonics")
+        if not isinstance(harmonics, list):
+            continue
+        key = ("cogging", str(entry.get("shaft"))) if entry.get("type") == "cogging" else \
+            ("emf-harmonic", str(entry.get("name")))
+        for h in harmonics:
+            try:
+                out.setdefault(key, set()).add(int(float(h["order"])))
+            except (TypeError, ValueError, KeyError):
+                continue
     return out
 
 

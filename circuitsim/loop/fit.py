@@ -506,17 +506,7 @@ def _uncertainty(J: np.ndarray, r: np.ndarray, space: _Space, z: np.ndarray,
     msgs: list[str] = []
     dof = m - n
     if groups is not None:
-        B = np.zeros((n, n))
-        for g in groups:
-            mg = g.size
-            s2 = float(r[g] @ r[g]) / max(mg - n * mg / m, 1.0)
-            B += s2 * _long_run_information(Jn[g], r[g])
-        # the sandwich squares the floored inverse and would wipe out a null direction;
-        # there a scalar noise level keeps the trade-off visible
-        if lam.min() > 1e-12 * lam_max:
-            cov_n = Ainv @ B @ Ainv
-        else:
-            cov_n = Ainv * float(np.trace(B) / np.trace(A))
+        cov_n = _sandwich(Jn, r, groups, A, Ainv, lam, lam_max, n, m)
     elif absolute:
         cov_n = Ainv
     elif dof > 0:
@@ -536,7 +526,34 @@ def _uncertainty(J: np.ndarray, r: np.ndarray, space: _Space, z: np.ndarray,
     corr = np.clip(np.nan_to_num(corr), -1.0, 1.0)
     np.fill_diagonal(corr, 1.0)
     stderr = np.sqrt(np.abs(np.diag(cov)))
+    flagged, more = _unidentifiable(names, dead, corr, lam, V, cond)
+    msgs += more
+    stderr = np.where(np.isin(np.arange(n), sorted(flagged)), np.nan, stderr)
+    return _Uncertainty(stderr, corr, float(cond), tuple(sorted(flagged)), tuple(msgs))
+
+
+def _sandwich(Jn, r, groups, A, Ainv, lam, lam_max, n: int, m: int) -> np.ndarray:
+    """A⁻¹ (Σ_p σ_p² J_pᵀJ_p) A⁻¹, with long-run (HAC) information per probe."""
+    B = np.zeros((n, n))
+    for g in groups:
+        mg = g.size
+        s2 = float(r[g] @ r[g]) / max(mg - n * mg / m, 1.0)
+        B += s2 * _long_run_information(Jn[g], r[g])
+    # the sandwich squares the floored inverse and would wipe out a null direction;
+    # there a scalar noise level keeps the trade-off visible
+    if lam.min() > 1e-12 * lam_max:
+        return Ainv @ B @ Ainv
+    return Ainv * float(np.trace(B) / np.trace(A))
+
+
+def _unidentifiable(names, dead, corr, lam, V, cond) -> tuple[set[int], list[str]]:
+    """Parameters the data cannot determine: without effect (a dead column), or only as a
+    combination with others (a strong correlation, a near-null direction); with the message
+    that says what to do about each."""
+    n = len(names)
+    lam_max = max(float(lam.max()), 1e-300)
     flagged: set[int] = set()
+    msgs: list[str] = []
     for k in np.flatnonzero(dead):
         flagged.add(int(k))
         msgs.append(f"{names[k]} has no effect on the measured values: it cannot be "
@@ -567,8 +584,7 @@ def _uncertainty(J: np.ndarray, r: np.ndarray, space: _Space, z: np.ndarray,
                     f"condition number {cond:.3g}); their standard errors would be "
                     f"meaningless. Fix all but one of them (--set), or measure a probe that "
                     f"separates them")
-    stderr = np.where(np.isin(np.arange(n), sorted(flagged)), np.nan, stderr)
-    return _Uncertainty(stderr, corr, float(cond), tuple(sorted(flagged)), tuple(msgs))
+    return flagged, msgs
 
 
 # ------------------------------------------------------------------------- features
@@ -679,7 +695,13 @@ def fit_features(model, features: FeatureSet, free: Sequence[str], *,
     h = 1e-5 if harmonic == "small-signal" else 1e-3
     J, bad = _jacobian(fun, z, h, space) if free else (np.zeros((vals.size, 0)), [])
     unc = _unevaluated(_uncertainty(J, r, space, z, None, absolute), bad, space)
-    fitted = overrides(z)
+    return _features_result(model, features, space, z, unc, overrides(z), harmonic, vals, w,
+                            ok, msg, nfev, stages)
+
+
+def _features_result(model, features: FeatureSet, space: _Space, z: np.ndarray, unc, fitted,
+                     harmonic: str, vals: np.ndarray, w: np.ndarray, ok: bool, msg: str,
+                     nfev: int, stages: list[Stage]) -> FitResult:
     pred = predict_features(model, features, fitted, harmonic)
     labels = _labels(features)
     return _result(model, space, z, unc, "features", ok, msg, nfev, stages,
@@ -771,7 +793,7 @@ def fit_record(model, record: Record, free: Sequence[str], *,
                bounds: Mapping[str, tuple[float, float]] | None = None,
                probes: Sequence[str] | None = None, staged: bool = True,
                rtol: float = 1e-8, atol: float | None = None,
-               max_nfev: int = 100) -> FitResult:
+               max_nfev: int = 100, weights: Mapping[str, float] | None = None) -> FitResult:
     """Fit ``free`` parameters of a compiled model to a measured record (output error).
 
     The model is simulated from rest on the record's time grid and compared with each probe
@@ -794,6 +816,8 @@ def fit_record(model, record: Record, free: Sequence[str], *,
     rtol, atol : integrator tolerances for the fit's simulations; tighter than a plain run
         because finite differences of the parameters must see the model, not the solver.
     max_nfev : largest number of simulations per stage (Jacobian evaluations not counted).
+    weights : per probe, the scale its residual is divided by [probe unit] (its noise level,
+        when known); default: the probe's spread.
 
     Returns
     -------
@@ -801,97 +825,118 @@ def fit_record(model, record: Record, free: Sequence[str], *,
         With ``kind='record'``, ``sim`` the fitted transient, ``residuals[probe]`` = measured -
         model on the record's grid, ``errors[probe]`` the NRMSE.
     """
-    params = dict(params or {})
-    names = _probes_of(model, record, probes)
-    space = _space(model, free, params, bounds)
-    data = [np.asarray(record[p], float) for p in names]
-    spread = np.array([_spread(x) for x in data])
-    t = np.asarray(record.t, float)
-    atol = atol if atol is not None else model.netlist.analysis.atol
-    failures = [0]
-
-    def overrides(z: np.ndarray) -> dict[str, float]:
-        return {**params, **dict(zip(space.names, space.theta(z).tolist(), strict=True))}
-
-    def simulate(z: np.ndarray):
-        try:
-            res = model.simulate(stop=float(t[-1]), params=overrides(z), t_eval=t, rtol=rtol,
-                                 atol=atol)
-        except ParameterError:
-            return None
-        if not res.success or res.t.size != t.size:
-            return None
-        return res
-
-    def waveforms(z: np.ndarray) -> list[np.ndarray] | None:
-        res = simulate(z)
-        return None if res is None else [res[p] for p in names]
-
-    def full(z: np.ndarray) -> np.ndarray:
-        ys = waveforms(z)
-        if ys is None:
-            failures[0] += 1
-            return np.full(t.size * len(names), FAILED_PENALTY)
-        return np.concatenate([(y - x) / s for y, x, s in zip(ys, data, spread, strict=True)])
-
-    W = smoothing_windows(t, data)
-    slow_data = [slow_features(W, x) for x in data]
-
-    def slow(z: np.ndarray) -> np.ndarray:
-        ys = waveforms(z)
-        if ys is None:
-            failures[0] += 1
-            return np.full(sum(d.size for d in slow_data), FAILED_PENALTY)
-        return np.concatenate([(slow_features(W, y) - d) / s
-                               for y, d, s in zip(ys, slow_data, spread, strict=True)])
-
+    prob = _RecordProblem(model, record, free, dict(params or {}), bounds, probes, weights,
+                          rtol, atol)
     z = np.zeros(len(free))
-    r0 = full(z)
-    if failures[0]:
+    r0 = prob.full(z)
+    if prob.failures:
         raise SolverError("the simulation fails at the start values of the fit; run the "
                           "netlist with them (`circuitsim run`) and fix the start values")
-    if np.any(~space.log & (space.start == 0.0)):
-        space = _calibrate(space, full, z, r0, bounds)
-        failures[0] = 0
-    if free:
-        # the simulation's own noise: the same run at another tolerance
-        alt = model.simulate(stop=float(t[-1]), params=overrides(z), t_eval=t,
-                             rtol=rtol * 1.5, atol=atol)
-        noise = float(np.linalg.norm(np.concatenate(
-            [(alt[p] - x) / s for p, x, s in zip(names, data, spread, strict=True)]) - r0)) \
-            if alt.success and alt.t.size == t.size else 0.0
-        step = _difference_steps(full, z, r0, space, noise)
-    else:
-        step = np.zeros(0)
+    if np.any(~prob.space.log & (prob.space.start == 0.0)):
+        prob.space = _calibrate(prob.space, prob.full, z, r0, bounds)
+        prob.failures = 0
+    step = prob.difference_steps(z, r0) if free else np.zeros(0)
     stages: list[Stage] = []
     nfev = 0
     ok, msg = True, "nothing free: the residuals of the start values"
-    if free:
+    for name, fun in prob.plan(staged) if free else []:
+        sol = _least_squares(fun, prob.space, z, step, max_nfev)
+        z = sol.x
+        nfev += int(sol.nfev)
+        ok, msg = bool(sol.status > 0), str(sol.message)
+        stages.append(Stage(name, _named(prob.space, z), float(sol.cost), int(sol.nfev), msg))
+    return prob.result(z, step, ok, msg, nfev, stages)
+
+
+class _RecordProblem:
+    """The output-error problem of one record: simulations at a parameter vector ``z`` and
+    the residual vectors the least-squares stages minimise."""
+
+    def __init__(self, model, record: Record, free: Sequence[str], params: dict[str, float],
+                 bounds, probes, weights, rtol: float, atol: float | None):
+        self.model, self.params, self.rtol = model, params, rtol
+        self.names = _probes_of(model, record, probes)
+        self.space = _space(model, free, params, bounds)
+        self.data = [np.asarray(record[p], float) for p in self.names]
+        # each probe's residual is divided by its scale: its noise level when the caller
+        # knows it (then a probe counts by its signal-to-noise ratio), else its spread
+        self.spread = np.array([weights[p] if weights and p in weights else _spread(x)
+                                for p, x in zip(self.names, self.data, strict=True)])
+        self.t = np.asarray(record.t, float)
+        self.atol = atol if atol is not None else model.netlist.analysis.atol
+        self.failures = 0
+        self.W = smoothing_windows(self.t, self.data)
+        self.slow_data = [slow_features(self.W, x) for x in self.data]
+
+    def overrides(self, z: np.ndarray) -> dict[str, float]:
+        return {**self.params,
+                **dict(zip(self.space.names, self.space.theta(z).tolist(), strict=True))}
+
+    def simulate(self, z: np.ndarray, rtol: float | None = None):
+        try:
+            res = self.model.simulate(stop=float(self.t[-1]), params=self.overrides(z),
+                                      t_eval=self.t, rtol=rtol or self.rtol, atol=self.atol)
+        except ParameterError:
+            return None
+        if not res.success or res.t.size != self.t.size:
+            return None
+        return res
+
+    def waveforms(self, z: np.ndarray) -> list[np.ndarray] | None:
+        res = self.simulate(z)
+        return None if res is None else [res[p] for p in self.names]
+
+    def full(self, z: np.ndarray) -> np.ndarray:
+        ys = self.waveforms(z)
+        if ys is None:
+            self.failures += 1
+            return np.full(self.t.size * len(self.names), FAILED_PENALTY)
+        return np.concatenate([(y - x) / s for y, x, s in zip(ys, self.data, self.spread,
+                                                               strict=True)])
+
+    def slow(self, z: np.ndarray) -> np.ndarray:
+        ys = self.waveforms(z)
+        if ys is None:
+            self.failures += 1
+            return np.full(sum(d.size for d in self.slow_data), FAILED_PENALTY)
+        return np.concatenate([(slow_features(self.W, y) - d) / s for y, d, s in
+                               zip(ys, self.slow_data, self.spread, strict=True)])
+
+    def difference_steps(self, z: np.ndarray, r0: np.ndarray) -> np.ndarray:
+        """Finite-difference steps sized to the simulation's own noise: the same run at
+        another tolerance."""
+        alt = self.simulate(z, self.rtol * 1.5)
+        noise = float(np.linalg.norm(np.concatenate(
+            [(alt[p] - x) / s for p, x, s in zip(self.names, self.data, self.spread,
+                                                 strict=True)]) - r0)) if alt is not None else 0.0
+        return _difference_steps(self.full, z, r0, self.space, noise)
+
+    def plan(self, staged: bool) -> list[tuple[str, Any]]:
         # without a shaft angle there is no ripple to slide out of phase: the waveform's own
         # cost has no spurious minima from it, and the slow stage would only cost runs
-        rotating = "rotational" in model.meta.get("integrals", {}).values()
-        plan = [("slow features", slow), ("waveform", full)] if staged and rotating else \
-            [("waveform", full)]
-        for name, fun in plan:
-            sol = _least_squares(fun, space, z, step, max_nfev)
-            z = sol.x
-            nfev += int(sol.nfev)
-            ok, msg = bool(sol.status > 0), str(sol.message)
-            stages.append(Stage(name, _named(space, z), float(sol.cost), int(sol.nfev), msg))
-    r = full(z)
-    if failures[0] and simulate(z) is None:
-        raise SolverError("the simulation fails at the fitted values; bound the parameters "
-                          "(bounds=...) or start closer")
-    J, bad = _jacobian(full, z, 10 * step, space) if free else (np.zeros((r.size, 0)), [])
-    groups = [np.arange(k * t.size, (k + 1) * t.size) for k in range(len(names))]
-    unc = _unevaluated(_uncertainty(J, r, space, z, groups, False), bad, space)
-    fitted = overrides(z)
-    sim = simulate(z)
-    residuals = {p: x - sim[p] for p, x in zip(names, data, strict=True)}
-    errors = {p: float(np.sqrt(np.mean(residuals[p] ** 2)) /
-                       max(float(np.std(x)), 1e-300)) for p, x in zip(names, data, strict=True)}
-    return _result(model, space, z, unc, "record", ok, msg, nfev, stages,
-                   residuals=residuals, errors=errors, params=fitted, sim=sim)
+        rotating = "rotational" in self.model.meta.get("integrals", {}).values()
+        return [("slow features", self.slow), ("waveform", self.full)] \
+            if staged and rotating else [("waveform", self.full)]
+
+    def result(self, z: np.ndarray, step: np.ndarray, ok: bool, msg: str, nfev: int,
+               stages: list[Stage]) -> FitResult:
+        r = self.full(z)
+        if self.failures and self.simulate(z) is None:
+            raise SolverError("the simulation fails at the fitted values; bound the "
+                              "parameters (bounds=...) or start closer")
+        n = len(self.space.names)
+        J, bad = _jacobian(self.full, z, 10 * step, self.space) if n else \
+            (np.zeros((r.size, 0)), [])
+        groups = [np.arange(k * self.t.size, (k + 1) * self.t.size)
+                  for k in range(len(self.names))]
+        unc = _unevaluated(_uncertainty(J, r, self.space, z, groups, False), bad, self.space)
+        sim = self.simulate(z)
+        residuals = {p: x - sim[p] for p, x in zip(self.names, self.data, strict=True)}
+        errors = {p: float(np.sqrt(np.mean(residuals[p] ** 2)) /
+                           max(float(np.std(x)), 1e-300))
+                  for p, x in zip(self.names, self.data, strict=True)}
+        return _result(self.model, self.space, z, unc, "record", ok, msg, nfev, stages,
+                       residuals=residuals, errors=errors, params=self.overrides(z), sim=sim)
 
 
 # -------------------------------------------------------------------------- dispatch

@@ -1,141 +1,51 @@
-"""Close the loop: trace a model's residual against a measured record to a physical effect.
+"""Close the loop: trace a model's residual against a measured record to physical effects.
 
-1. Fit the declared free parameters (``fit.fit_record``, staged so that a ripple locked to the
-   rotor angle cannot trap it) and compute the residual of every probe.
-2. Analyse it: RMS and NRMSE per probe; spectrum with peaks labelled as orders of the shaft
-   frequency; whiteness (Ljung-Box); correlation with candidate regressors; the noise floor
-   (from first differences, which white noise inflates and smooth structure does not).
-3. Score every effect of the catalog (``effects``: netlist patches exact at their null
-   value), with harmonic orders taken from the residual spectrum: a score test projects the
-   residual on each candidate's sensitivity at its null value (one short simulation per free
-   parameter); effects a linearisation cannot see (saturation) are screened on a small grid.
-   The best few are refitted with full simulation.
-4. Accept an effect only when the Bayesian information criterion falls by more than
-   ``BIC_MARGIN`` *and* it explains at least ``EXCESS_FRACTION`` of the residual above the
-   noise floor (so a slice of an effect outside the catalog is no confident attribution).
-   Repeat greedily; stop when nothing significant remains.
-5. Report the error before and after, the effects in order with parameters, standard errors
-   and evidence, what could not be told apart, and what structure remains.
+The stages, each a function of plain objects (``context``):
 
-Top-level imports stay light (numpy only): the CLI imports this module on every call.
+1. ``fit_declared`` -- fit the declared free parameters (staged, so that a ripple locked to
+   the rotor angle cannot trap the fit); the probes are weighted by their noise.
+2. ``residual.analyse`` -- RMS, spectral peaks labelled as shaft orders, whiteness.
+3. ``screen.propose`` / ``screen.screen`` -- every catalog candidate (netlist patches exact at
+   their null value), harmonic orders from the residual; a linearised fit gain ranks them.
+4. ``decide.refit_trial`` / ``decide.judge`` -- the best few are refitted with full simulation
+   and judged: BIC on prewhitened residuals, share of the residual's structure explained,
+   physical bounds. A candidate that re-tunes a declared term is a *correction*, never a new
+   cause.
+5. ``_backward`` -- after each acceptance every earlier effect is re-tested with the others
+   present and dropped when it is no longer needed; when no single candidate passes, the best
+   two are tried together (one effect may have been absorbing two).
+6. ``describe.remaining`` -- what structure is left, in plain terms, never a catalog label.
+7. ``Diagnosis`` (``result``) -- the report: error before and after, effects, corrections,
+   what could not be told apart, what was rejected and why, what remains.
 """
 
 from __future__ import annotations
 
 import math
-import warnings
-from collections.abc import Mapping, MutableMapping, Sequence
-from dataclasses import dataclass
+import time
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
 
 from circuitsim.errors import CircuitsimError
-from circuitsim.loop.diagnose.residual import _orders, analyse
+from circuitsim.loop.diagnose.context import (
+    MAX_EFFECTS,
+    Choice,
+    ModelState,
+    Setup,
+    compile_raw,
+    refit,
+    simulate,
+)
+from circuitsim.loop.diagnose.decide import BIC_MARGIN, Trial, judge, refit_trial
+from circuitsim.loop.diagnose.describe import remaining
+from circuitsim.loop.diagnose.netlist_out import _with_values
+from circuitsim.loop.diagnose.residual import _orders, analyse, noise_sigma
 from circuitsim.loop.diagnose.result import Accepted, Diagnosis, DiagnosisError
+from circuitsim.loop.diagnose.screen import Screen, projections, propose, screen
 
-BIC_MARGIN = 10.0  # "very strong" evidence on the Kass-Raftery scale
-EXCESS_FRACTION = 0.3  # share of the above-noise residual an accepted effect must explain
-SCREEN_TOP = 4  # candidates refitted with full simulation per round
-MAX_EFFECTS = 4
-
-
-# ------------------------------------------------------------------ residual analysis
-
-
-# --------------------------------------------------------------------- the engine
-
-@dataclass
-class _State:
-    """The model as it stands in the greedy loop."""
-
-    raw: Any
-    model: Any
-    free: list[str]
-    params: dict[str, float]
-    fit: Any
-    bounds: dict[str, tuple[float, float]]
-
-
-def _compile(raw):
-    from circuitsim.compiler.model import compile as compile_model
-    from circuitsim.netlist.load import build
-
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        return compile_model(build(raw))
-
-
-def _normalised(record, probes, sims_or_residuals, spread) -> np.ndarray:
-    return np.concatenate([np.asarray(sims_or_residuals[p]) / s
-                           for p, s in zip(probes, spread, strict=True)])
-
-
-def _sse(fit_res, probes, spread) -> float:
-    e = _normalised(None, probes, fit_res.residuals, spread)
-    return float(e @ e)
-
-
-def _simulate(model, record, params, rtol):
-    res = model.simulate(stop=float(record.t[-1]), params=params, t_eval=record.t,
-                         rtol=rtol, atol=model.netlist.analysis.atol)
-    if not res.success or res.t.size != record.t.size:
-        return None
-    return res
-
-
-def _screen(cand, state: _State, record, probes, spread, e0: np.ndarray, rtol: float,
-            project, noise: float = 0.0) -> dict[str, Any] | None:
-    """Score test of one candidate: how much of the residual its sensitivity explains.
-
-    ``noise``: the norm of the simulation's own error in the projected space; a candidate
-    whose sensitivity stays within a few times it, however large the step, acts on nothing
-    that is measured (a resistance in series with an ideal source's shunt) and is dropped --
-    its "gain" would be solver noise fitted to the residual."""
-    model = _compile(cand.apply(state.raw))
-    base = {**state.params, **{k: v[0] for k, v in cand.free.items()}}
-    y0 = _simulate(model, record, base, rtol)
-    if y0 is None:
-        return None
-    if cand.grid:  # invisible to a linearisation at null: try a few values instead
-        first = next(iter(cand.free))
-        scale = max(float(np.max(np.abs(y0[f"{cand.target}.i"]))), 1e-9) \
-            if f"{cand.target}.i" in y0.names else 1.0
-        best = None
-        for g in cand.grid:
-            trial = {**base, first: g * scale}
-            y = _simulate(model, record, trial, rtol)
-            if y is None:
-                continue
-            e = e0 - (project(y) - project(y0))
-            gain = float(e0 @ e0 - e @ e)
-            if best is None or gain > best["gain"]:
-                best = {"gain": gain, "start": {first: g * scale}, "S": None}
-        return best and {**best, "model": model}
-    cols = []
-    for name in cand.free:
-        h = cand.steps.get(name, 1e-3)
-        for _ in range(3):
-            y = _simulate(model, record, {**base, name: base[name] + h}, rtol)
-            if y is None:
-                return None
-            col = (project(y) - project(y0)) / h
-            size = float(np.linalg.norm(col * h))
-            if size < max(1e-4 * math.sqrt(col.size) * 1e-3, 10 * noise):
-                h *= 100  # invisible above the solver's noise: a bigger step
-            elif size > 0.3 * math.sqrt(col.size):
-                h /= 30  # far from linear: a smaller one
-            else:
-                break
-        else:
-            if size < 10 * noise:
-                return None
-        cols.append(col)
-    S = np.column_stack(cols)
-    coef, *_ = np.linalg.lstsq(S, e0, rcond=None)
-    gain = float(e0 @ (S @ coef))
-    start = {n: base[n] + float(c) for n, c in zip(cand.free, coef, strict=True)}
-    return {"gain": gain, "start": start, "S": S, "model": model}
+SCREEN_TOP = 3  # candidates refitted with full simulation per round
 
 
 def diagnose(netlist, record, free: Sequence[str] = (), *, probes: Sequence[str] | None = None,
@@ -147,418 +57,259 @@ def diagnose(netlist, record, free: Sequence[str] = (), *, probes: Sequence[str]
     Parameters
     ----------
     netlist : a Netlist (``circuitsim.load``) or a path.
-    record : a ``data.Record`` (time series).
+    record : a ``Record`` (time series).
     free : declared free parameters, fitted first and kept free throughout.
     probes : probe columns to use (default: every probe the record has).
+    params : overrides [SI]; for a declared free parameter, its start value.
+    progress : called with a line of text at each step.
     """
-    import time
+    clock = {"start": time.perf_counter()}
+    setup, state0 = fit_declared(netlist, record, free, probes, params, rtol, max_effects,
+                                 progress)
+    clock["fit_declared"] = time.perf_counter() - clock["start"]
+    state, log = search(setup, state0, screen_top, clock)
+    clock["total"] = time.perf_counter() - clock["start"]
+    return report(setup, state0, state, log, clock)
 
-    from circuitsim.compiler.model import compile as compile_model
-    from circuitsim.loop import effects
-    from circuitsim.loop.fit import fit_record, slow_features, smoothing_windows
+
+def fit_declared(netlist, record, free, probes, params, rtol, max_effects, progress
+                 ) -> tuple[Setup, ModelState]:
+    """Stage 1: the declared model fitted, with each probe weighted by its noise."""
     from circuitsim.netlist.load import Netlist, load
 
-    say = progress or (lambda msg: None)
-    clock = {"start": time.perf_counter()}
     net = netlist if isinstance(netlist, Netlist) else load(netlist)
     if net.raw is None:
         raise DiagnosisError("this netlist has no raw form to patch; load it from a file")
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        model = compile_model(net)
-    probes = list(probes or [p for p in model.probe_names if p in record.names])
-    if not probes:
+    model = compile_raw(net.raw)
+    names = tuple(probes or [p for p in model.probe_names if p in record.names])
+    if not names:
         raise DiagnosisError(f"the record {record.path} has no column named like a probe of "
                              f"the netlist ({', '.join(model.probe_names)})")
-    spread = np.array([max(float(np.std(record[p])), 1e-300) for p in probes])
-    n_samples = record.t.size * len(probes)
+    missing = [p for p in names if p not in record.names or p not in model.probe_names]
+    if missing:
+        raise DiagnosisError(f"probe(s) {', '.join(missing)} are not both a column of the "
+                             f"record ({', '.join(record.names)}) and a probe of the netlist "
+                             f"({', '.join(model.probe_names)})")
+    first = Setup(record, names, {p: _spread(record[p]) for p in names}, tuple(free), rtol,
+                  max_effects, progress)
+    fit0 = refit(first, model, list(free), dict(params or {}), {}, staged=True)
+    weights = {p: _noise_weight(fit0.residuals[p], record[p]) for p in names}
+    setup = Setup(record, names, weights, tuple(free), rtol, max_effects, progress)
+    if free:  # refit with the noise weights (a probe counts by its signal-to-noise ratio)
+        fit0 = refit(setup, model, list(free), dict(fit0.params), {}, nfev=20)
+    setup.log(f"declared fit: error {fit0.error:.4g}")
+    return setup, ModelState(net.raw, model, list(free), dict(fit0.params), fit0, {}, [],
+                             net.raw)
 
-    def refit(model_, free_, params_, bounds_, staged=False, nfev=12):
-        # a candidate starts from its score-test estimate, inside the right basin: one
-        # waveform stage with a few iterations is enough (the declared fit is staged)
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            bounds_ = {k: v for k, v in (bounds_ or {}).items() if k in free_}
-            return fit_record(model_, record, free_, params=params_, bounds=bounds_ or None,
-                              probes=probes, rtol=rtol, staged=staged,
-                              max_nfev=100 if staged else nfev)
 
-    fit0 = refit(model, list(free), dict(params or {}), {}, staged=True)
-    clock["fit"] = time.perf_counter() - clock["start"]
-    state = _State(net.raw, model, list(free), dict(fit0.params), fit0, {})
-    analysis0 = analyse(model, record, fit0, probes)
-    sigma2 = sum(analysis0["probes"][p]["noise_sigma"] ** 2 / s**2 * record.t.size
-                 for p, s in zip(probes, spread, strict=True))
-    accepted: list[Accepted] = []
-    chosen: list[Any] = []  # the accepted candidates, in order
-    alternatives: list[list[tuple[Any, dict[str, float]]]] = []  # near-equals per round
-    rejected: list[dict[str, Any]] = []
-    indistinct: list[str] = []
-    tried: set[str] = set()
-    analysis = analysis0
-    screen_time = refit_time = 0.0
-    # Screening compares phase-insensitive slow features (windowed means and ripple RMS,
-    # as the fit's first stage): a ripple locked to the rotor angle slides out of phase as
-    # soon as an effect changes the speed, and a linearisation of the raw waveform then
-    # points anywhere. The BIC that decides is computed on the refitted waveform.
-    W = smoothing_windows(record.t, [np.asarray(record[p]) for p in probes])
+def _spread(x) -> float:
+    return max(float(np.std(np.asarray(x, float))), 1e-300)
 
-    def project(y) -> np.ndarray:
-        return np.concatenate([slow_features(W, np.asarray(y[p])) / sp_
-                               for p, sp_ in zip(probes, spread, strict=True)])
 
-    def wave(y) -> np.ndarray:
-        return np.concatenate([np.asarray(y[p]) / sp_ for p, sp_ in zip(probes, spread,
-                                                                          strict=True)])
+def _noise_weight(residual, measured) -> float:
+    """A probe's noise level [unit]: the white level of its residual, never below a
+    millionth of its spread (a noise-free or coarsely quantised record)."""
+    return max(noise_sigma(np.asarray(residual, float)), 1e-6 * _spread(measured))
 
-    rotating = bool(model.meta.get("integrals")) and any(
-        d == "rotational" for d in model.meta.get("integrals", {}).values())
-    measured_features = project(record)
-    measured_wave = wave(record)
-    while len(accepted) < max_effects:
-        sse0 = _sse(state.fit, probes, spread)
-        excess = max(sse0 - sigma2, 0.0)
-        # A harmonic of the shaft angle leaves the speed alone to first order, so its score
-        # test can use the waveform itself, where the phase tells cogging (a torque) from
-        # an EMF harmonic (a voltage); everything else is screened on the slow features.
-        spaces = {False: (measured_features - project(state.fit.sim), project),
-                  True: (measured_wave - wave(state.fit.sim), wave)}
-        if not rotating:  # no shaft angle: no phase to slide, the waveform is best
-            spaces[False] = spaces[True]
+
+# ------------------------------------------------------------------------------- search
+
+def search(setup: Setup, state: ModelState, screen_top: int, clock: dict[str, float]
+           ) -> tuple[ModelState, dict[str, Any]]:
+    """Stages 3-5 repeated: rounds of screening, refits and decisions until nothing passes."""
+    log: dict[str, Any] = {"rejected": [], "indistinct": [], "trials": {}, "tried": set()}
+    clock.setdefault("screen", 0.0)
+    clock.setdefault("refit", 0.0)
+    while sum(not c.correction for c in state.chosen) < setup.max_effects:
         t0 = time.perf_counter()
-        # the simulation's own error: the same model at a slightly different tolerance
-        alt = _simulate(state.model, record, state.params, rtol * 1.5)
-        noise = {False: 0.0, True: 0.0} if alt is None else {
-            k: float(np.linalg.norm(fn(alt) - fn(state.fit.sim)))
-            for k, fn in ((False, spaces[False][1]), (True, spaces[True][1]))}
-        cands = [c for c in effects.candidates(load_raw_netlist(state.raw),
-                                               _orders(analysis))
-                 if c.key not in tried and c.key not in {x.key for x in chosen}]
-        scored = []
-        for c in cands:
-            say(f"screening {c.key}")
-            e0, space = spaces["order" in c.fixed]
-            s = _screen(c, state, record, probes, spread, e0, rtol, space,
-                        noise["order" in c.fixed])
-            if s is not None and s["gain"] > 0:
-                # gains in the two spaces are compared as shares of their own residual
-                s["share"] = s["gain"] / float(e0 @ e0)
-                s["n"] = e0.size
-                scored.append((c, s))
-        scored.sort(key=lambda cs: -cs[1]["share"])
-        # A candidate whose best linear gain cannot pay its BIC penalty will not pass after
-        # a refit either (the score test is exact for effects linear in their parameters):
-        # refitting it would only cost simulations.
-        # ... nor one that explains less than a tenth of what the best one does
-        top = scored[0][1]["share"] if scored else 0.0
-        scored = [(c, s) for c, s in scored if s["share"] >= 0.1 * top]
-        scored = [(c, s) for c, s in scored
-                  if s["share"] > 0.5 * (1 - math.exp(-(BIC_MARGIN + len(c.free) *
-                                                        math.log(s["n"])) / s["n"]))]
-        screen_time += time.perf_counter() - t0
-        if not scored:
-            break
+        screens = _screen_round(setup, state, log)
+        clock["screen"] += time.perf_counter() - t0
         t0 = time.perf_counter()
-        best = None
-        results = []
-        top_set = scored[:screen_top]
-        # neighbouring orders of one harmonic effect score alike when the speed changes
-        # through the record (order 35 fits a drifting order-36 ripple almost as well): the
-        # linear screen cannot rank such near-ties, so the refit gets all of them
-        for c, s in scored[screen_top:]:
-            if "order" in c.fixed and any(
-                    c2.effect == c.effect and c2.target == c.target and "order" in c2.fixed
-                    and abs(c2.fixed["order"] - c.fixed["order"]) <= 1
-                    and s["share"] >= 0.8 * s2["share"] for c2, s2 in top_set):
-                top_set.append((c, s))
-        for c, s in top_set:
-            say(f"refitting {c.key}")
-            free_c = [*state.free, *c.free]
-            params_c = {**state.params, **s["start"]}
-            bounds_c = dict(state.bounds)
-            for n, (_, lo, hi) in c.free.items():
-                # the score test's linear estimate may fall outside the physical range
-                # (a negative viscous coefficient): start on the edge instead
-                params_c[n] = min(max(params_c[n], lo), hi)
-                bounds_c[n] = (lo, hi)
-            try:
-                f = refit(s["model"], free_c, params_c, bounds_c)
-            except CircuitsimError as exc:
-                rejected.append({"effect": c.effect, "target": c.target,
-                                 "reason": f"refit failed: {exc.bare}"})
-                continue
-            sse = _sse(f, probes, spread)
-            say(f"  {c.key}: SSE {sse0:.5g} -> {sse:.5g}")
-            k = len(c.free)
-            dbic = n_samples * math.log(max(sse, 1e-300) / sse0) + k * math.log(n_samples)
-            entry = (dbic, c, s, f, sse)
-            results.append(entry)
-            if best is None or dbic < best[0]:
-                best = entry
-        refit_time += time.perf_counter() - t0
-        if best is None:
+        winner = _refit_round(setup, state, screens[:screen_top] + _near_ties(screens,
+                                                                              screen_top), log)
+        clock["refit"] += time.perf_counter() - t0
+        if winner is None:
             break
-        dbic, c, s, f, sse = best
-        explained = (sse0 - sse) / excess if excess > 0 else 0.0
-        tried.add(c.key)
-        if not (dbic < -BIC_MARGIN and explained >= EXCESS_FRACTION):
-            rejected.append({"effect": c.effect, "target": c.target, "delta_bic": dbic,
-                             "explained_fraction": explained,
-                             "reason": "not significant" if dbic >= -BIC_MARGIN else
-                             "explains too little of the residual above the noise"})
-            break
-        # which other candidates explain the same thing: a refit nearly as good, or a
-        # sensitivity of the same shape
-        for dbic2, c2, _, _, _ in results:
-            if c2 is not c and dbic2 - dbic < BIC_MARGIN:
-                indistinct.append(f"{c.effect} on {c.target} and {c2.effect} on {c2.target} "
-                                  f"explain this record almost equally well (BIC "
-                                  f"{dbic:.1f} vs {dbic2:.1f}): the data cannot tell them "
-                                  f"apart")
-        # the short refit decided; polish the accepted model with a full fit, from there
-        polish_bounds = {**state.bounds, **{n: (min(lo, f.params[n]), max(hi, f.params[n]))
-                                            for n, (_, lo, hi) in c.free.items()}}
-        try:
-            f = refit(s["model"], [*state.free, *c.free], dict(f.params), polish_bounds,
-                      nfev=40)
-            sse = _sse(f, probes, spread)
-        except CircuitsimError:
-            pass
-        raw = c.apply(state.raw)
-        chosen.append(c)
-        alternatives.append([(c2, {n: f2.params[n] for n in c2.free})
-                             for _, c2, _, f2, sse2 in results
-                             if c2 is not c and sse2 < 1.1 * sse])
-        state = _State(raw, s["model"], [*state.free, *c.free], dict(f.params), f,
-                       {**state.bounds, **{n: (lo, hi) for n, (_, lo, hi) in c.free.items()}})
-        analysis = analyse(state.model, record, f, probes)
-        peak = next((pk for pr in analysis0["probes"].values() for pk in pr["peaks"]
-                     if c.fixed.get("order") in pk["orders"].values()), None)
-        accepted.append(Accepted(
-            c.effect, c.target,
-            {**{n: f.estimate[n] for n in c.free}, **({"order": c.fixed["order"]}
-                                                      if "order" in c.fixed else {})},
-            {n: (f.stderr[n] if math.isfinite(f.stderr[n]) else None) for n in c.free},
-            f.error,
-            {"what": c.what, "delta_bic": dbic, "explained_fraction": explained,
-             "screen_gain": s["gain"], "spectral_peak": peak,
-             "sse_before": sse0, "sse_after": sse}))
-        say(f"accepted {c.key}: error {f.error:.4g}")
-        # Forward selection is greedy: an effect chosen while another was still missing may
-        # have been a stand-in for a near-equal alternative (viscous friction for Coulomb
-        # friction while a cogging ripple blurred the record). Revisit earlier choices.
-        state = _revisit(state, chosen, alternatives, accepted, net.raw, list(free), refit,
-                         probes, spread, n_samples, say)
-    final = state.fit
-    analysis_after = analysis
-    sse_end = _sse(final, probes, spread)
-    left = max(sse_end - sigma2, 0.0) / sse_end if sse_end > 0 else 0.0
-    white = all(pr["whiteness"]["white"] for pr in analysis_after["probes"].values())
-    peaks = [pk for pr in analysis_after["probes"].values() for pk in pr["peaks"]]
-    remaining = {"structure": bool(left > 0.2 or not white),
-                 "above_noise_fraction": left, "white": white,
-                 "peaks": peaks[:6],
-                 "note": (f"{left:.0%} of the residual is above the noise floor" +
-                          ("" if white else ", the residual is not white") +
-                          ("; peaks at " + ", ".join(f"{pk['frequency']:.4g} Hz"
-                                                     for pk in peaks[:3]) if peaks else ""))}
-    clock_total = time.perf_counter() - clock["start"]
-    raw = _with_values(state.raw, final.params)
-    return Diagnosis(fit0.error, final.error, dict(fit0.errors), dict(final.errors), accepted,
-                     indistinct, remaining, analysis0, analysis_after, raw, fit0, final, record,
-                     {"fit_declared": clock["fit"], "screen": screen_time, "refit": refit_time,
-                      "total": clock_total}, rejected)
+        state = _accept(setup, state, winner, log)
+        state = _backward(setup, state, log)
+    return state, log
 
 
-def _revisit(state: _State, chosen, alternatives, accepted, base_raw, declared, refit,
-             probes, spread, n_samples, say) -> _State:
-    """Swap an earlier accepted effect for one of its near-equal alternatives when, with the
-    later effects in place, the swap lowers the BIC by more than ``BIC_MARGIN``."""
-    sse_now = _sse(state.fit, probes, spread)
-    for i in range(len(chosen) - 1):
-        for alt, alt_start in alternatives[i]:
-            trial = [*chosen[:i], alt, *chosen[i + 1:]]
-            raw = base_raw
-            for c in trial:
-                raw = c.apply(raw)
-            params = {k: v for k, v in state.params.items() if k not in chosen[i].free}
-            params.update(alt_start)
-            free = [*declared, *(n for c in trial for n in c.free)]
-            bounds = {n: (min(lo, params.get(n, st)), max(hi, params.get(n, st)))
-                      for c in trial for n, (st, lo, hi) in c.free.items()}
-            try:
-                f = refit(_compile(raw), free, params, bounds)
-            except CircuitsimError:
-                continue
-            sse = _sse(f, probes, spread)
-            if n_samples * math.log(max(sse, 1e-300) / sse_now) < -BIC_MARGIN:
-                say(f"revised: {alt.key} replaces {chosen[i].key}")
-                old = chosen[i]
-                chosen[i] = alt
-                alternatives[i] = [(old, {n: state.params[n] for n in old.free})]
-                a = accepted[i]
-                a.effect, a.target = alt.effect, alt.target
-                a.parameters = {**{n: f.estimate[n] for n in alt.free},
-                                **({"order": alt.fixed["order"]} if "order" in alt.fixed
-                                   else {})}
-                a.stderr = {n: (f.stderr[n] if math.isfinite(f.stderr[n]) else None)
-                            for n in alt.free}
-                a.evidence = {**a.evidence, "what": alt.what,
-                              "revised": f"replaced {old.effect} on {old.target} once "
-                                         f"later effects were in place"}
-                for b in accepted:
-                    for n in list(b.parameters):
-                        if n in f.estimate:
-                            b.parameters[n] = f.estimate[n]
-                accepted[-1].error_after = f.error
-                state = _State(raw, _compile(raw), free, dict(f.params), f,
-                               {**state.bounds, **bounds})
-                sse_now = sse
-                break
-    return state
+def _screen_round(setup: Setup, state: ModelState, log: dict[str, Any]) -> list[Screen]:
+    """Stage 3: propose and rank this round's candidates by their linearised gain."""
+    slow, wave, rotating = projections(setup, state.model)
+    if not rotating:  # no shaft angle: no phase to slide, the waveform is best
+        slow = wave
+    alt = simulate(setup, state.model, state.params, setup.rtol * 1.5)
+    noise = {id(fn): (0.0 if alt is None else
+                      float(np.linalg.norm(fn(alt) - fn(state.fit.sim)))) for fn in (slow, wave)}
+    analysis = analyse(state.model, setup.record, state.fit, setup.probes)
+    out = []
+    for prop in propose(setup, state, _orders(analysis), log["tried"]):
+        setup.log(f"screening {prop.candidate.key}")
+        fn = wave if "order" in prop.candidate.fixed else slow
+        s = screen(setup, state, prop, fn, noise[id(fn)])
+        if s is not None and s.share > 0:
+            out.append(s)
+    out.sort(key=lambda s: -s.share)
+    top = out[0].share if out else 0.0
+    n = setup.n * len(setup.probes)
+    # a gain that cannot pay the BIC penalty even as a white-noise likelihood ratio will not
+    # pass after a refit either; nor one a tenth of the best one's
+    return [s for s in out if s.share >= 0.1 * top and s.share > 1 - math.exp(
+        -(BIC_MARGIN + len(s.proposal.candidate.free) * math.log(n)) / n)]
 
 
-def diagnose_features(netlist, features, free: Sequence[str] = (), *,
-                      max_effects: int = MAX_EFFECTS,
-                      params: Mapping[str, float] | None = None,
-                      progress=None) -> Diagnosis:
-    """The diagnosis on features (steady values, harmonic amplitudes and frequencies).
-
-    A handful of numbers carries no spectrum and no whiteness: every candidate of the catalog
-    is refitted directly (``fit.fit_features``; effects invisible at their null value start
-    from their grid), and one is accepted when it lowers chi-square by more than
-    ``BIC_MARGIN`` + k ln n and by at least half; repeated greedily. Features need sigmas.
-    """
-    import time
-
-    from circuitsim.loop import effects
-    from circuitsim.loop.fit import fit_features
-    from circuitsim.netlist.load import Netlist, load
-
-    say = progress or (lambda msg: None)
-    start = time.perf_counter()
-    net = netlist if isinstance(netlist, Netlist) else load(netlist)
-    if any(f.sigma is None for f in features.features):
-        raise DiagnosisError(f"{features.path}: every feature needs a sigma for the "
-                             f"diagnosis (its chi-square decides)")
-    n = len(features.features)
-
-    def chi2(f) -> float:
-        return float(sum(v**2 for v in f.errors.values()))
-
-    def run(model, free_, params_, bounds_):
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            return fit_features(model, features, free_, params=params_,
-                                bounds={k: v for k, v in bounds_.items() if k in free_} or None)
-
-    model = _compile(net.raw)
-    fit0 = run(model, list(free), dict(params or {}), {})
-    raw, cur_free, params, bounds, fit = net.raw, list(free), dict(fit0.params), {}, fit0
-    accepted: list[Accepted] = []
-    rejected: list[dict[str, Any]] = []
-    indistinct: list[str] = []
-    tried: set[str] = set()
-    while len(accepted) < max_effects:
-        c0 = chi2(fit)
-        if c0 <= BIC_MARGIN + math.log(max(n, 2)):
-            break  # no effect could lower chi-square by what acceptance asks: stop here
-        best = None
-        round_results: list[tuple[Any, float]] = []
-        for cand in effects.candidates(build_raw(raw)):
-            if cand.key in tried:
-                continue
-            m = _compile(cand.apply(raw))
-            b = {**bounds, **{k: (lo, hi) for k, (_, lo, hi) in cand.free.items()}}
-            starts = [{}]
-            if cand.grid:  # saturation: start from knee currents around the operating point
-                first = next(iter(cand.free))
-                starts = [{first: g} for g in (1e-3, 1e-2, 0.1, 1.0)]
-            for st in starts:
-                try:
-                    f = run(m, [*cur_free, *cand.free],
-                            {**params, **{k: v[0] for k, v in cand.free.items()}, **st}, b)
-                except CircuitsimError:
-                    continue
-                say(f"  {cand.key}: chi2 {c0:.4g} -> {chi2(f):.4g}")
-                round_results.append((cand, chi2(f)))
-                if best is None or chi2(f) < chi2(best[1]):
-                    best = (cand, f, b)
-        if best is None:
-            break
-        cand, f, b = best
-        tried.add(cand.key)
-        k = len(cand.free)
-        if not (c0 - chi2(f) > BIC_MARGIN + k * math.log(max(n, 2)) and chi2(f) < 0.5 * c0):
-            rejected.append({"effect": cand.effect, "target": cand.target,
-                             "chi2_before": c0, "chi2_after": chi2(f),
-                             "reason": "not significant"})
-            break
-        for other, x2 in round_results:
-            if other.key != cand.key and x2 - chi2(f) < BIC_MARGIN and \
-                    not any(other.effect in t and other.target in t for t in indistinct):
-                indistinct.append(f"{cand.effect} on {cand.target} and {other.effect} on "
-                                  f"{other.target} explain these features almost equally "
-                                  f"well (chi-square {chi2(f):.3g} vs {x2:.3g}): the data "
-                                  f"cannot tell them apart")
-        raw = cand.apply(raw)
-        cur_free += list(cand.free)
-        params, bounds, fit = dict(f.params), b, f
-        accepted.append(Accepted(
-            cand.effect, cand.target, {nm: f.estimate[nm] for nm in cand.free},
-            {nm: (f.stderr[nm] if math.isfinite(f.stderr[nm]) else None)
-             for nm in cand.free}, f.error,
-            {"what": cand.what, "chi2_before": c0, "chi2_after": chi2(f),
-             "predicted": dict(f.predicted)}))
-        say(f"accepted {cand.key}: chi2 {chi2(f):.4g}")
-    out = _with_values(raw, fit.params)
-    left = chi2(fit)
-    remaining = {"structure": bool(left > n + 3 * math.sqrt(2 * n)), "chi2": left,
-                 "note": f"chi-square {left:.3g} for {n} features"}
-    return Diagnosis(fit0.error, fit.error, dict(fit0.errors), dict(fit.errors), accepted,
-                     indistinct, remaining, {"predicted": dict(fit0.predicted)},
-                     {"predicted": dict(fit.predicted)}, out, fit0, fit, None,
-                     {"total": time.perf_counter() - start}, rejected)
-
-
-def _with_values(raw, params: Mapping[str, float]):
-    """A copy of the raw netlist with the fitted (and overridden) values written in:
-    netlist parameters by name, component parameters (``La.L``) in their component."""
-    out = raw.copy()
-    for name, v in params.items():
-        if name in out.params:
-            out.params[name] = (repr(float(v)), out.params[name][1])
-        elif "." in name:
-            comp, *path = name.split(".")
-            node = out.component_entry(comp)
-            # a waveform field ('V1.V.v1') sits one level down, under the waveform's kind:
-            # V: {step: {v1: ...}}
-            for key in path[:-1]:
-                node = node[key]
-                if isinstance(node, Mapping) and key not in ("table",) and len(node) == 1 \
-                        and isinstance(next(iter(node.values())), Mapping):
-                    node = next(iter(node.values()))
-            if not isinstance(node, MutableMapping):
-                raise DiagnosisError(f"cannot write the value of {name} into the netlist "
-                                     f"(its entry is not a mapping); give it as a netlist "
-                                     f"parameter instead")
-            node[path[-1]] = float(v)
+def _near_ties(screens: list[Screen], top: int) -> list[Screen]:
+    """Neighbouring orders of one harmonic effect score alike when the speed changes through
+    the record: the linear screen cannot rank such near-ties, so the refit gets all of them."""
+    head = screens[:top]
+    out = []
+    for s in screens[top:]:
+        c = s.proposal.candidate
+        if "order" in c.fixed and any(
+                h.proposal.candidate.effect == c.effect and h.proposal.candidate.target ==
+                c.target and abs(h.proposal.candidate.fixed.get("order", -9) -
+                                 c.fixed["order"]) <= 1 and s.share >= 0.8 * h.share
+                for h in head):
+            out.append(s)
     return out
 
 
-def build_raw(raw):
-    from circuitsim.netlist.load import build
+def _refit_round(setup: Setup, state: ModelState, screens: list[Screen],
+                 log: dict[str, Any]) -> tuple[Trial, bool] | None:
+    """Stage 4: refit the screened candidates and keep the best that passes; when none
+    passes alone, the best two together."""
+    trials: list[tuple[Trial, bool]] = []
+    for s in screens:
+        c = s.proposal.candidate
+        setup.log(f"refitting {c.key}")
+        trial = refit_trial(setup, state, [c], s.start, s.model)
+        if trial is None:
+            log["rejected"].append({"effect": c.effect, "target": c.target,
+                                    "reason": "refit failed"})
+            continue
+        judge(setup, state, trial)
+        setup.log(f"  {c.key}: {trial.note}")
+        trials.append((trial, s.proposal.correction))
+    passed = [t for t in trials if t[0].passed]
+    if not passed and len(screens) >= 2:
+        pair = _pair(setup, state, screens[:2])
+        if pair is not None and pair.passed:
+            passed = [(pair, False)]
+    for t, _ in trials:
+        if (t, _) not in passed:
+            log["tried"].add(t.key)
+            log["rejected"].append({"effect": t.candidates[0].effect,
+                                    "target": t.candidates[0].target,
+                                    "delta_bic": t.delta_bic, "structure_share": t.share,
+                                    "reason": t.note})
+    if not passed:
+        return None
+    passed.sort(key=lambda t: t[0].delta_bic)
+    best = passed[0]
+    for t, _ in trials:
+        if t is not best[0] and t.delta_bic - best[0].delta_bic < BIC_MARGIN and t.passed:
+            log["indistinct"].append(
+                f"{best[0].key} and {t.key} explain this record almost equally well (ΔBIC "
+                f"{best[0].delta_bic:.1f} vs {t.delta_bic:.1f}): the data cannot tell them "
+                f"apart")
+    return best
 
-    return build(raw)
+
+def _pair(setup: Setup, state: ModelState, screens: list[Screen]) -> Trial | None:
+    """Two candidates refitted together: one may have been absorbing both effects."""
+    a, b = (s.proposal.candidate for s in screens)
+    if a.target == b.target and a.effect == b.effect:
+        return None
+    raw = b.apply(a.apply(state.raw))
+    setup.log(f"refitting the pair {a.key} + {b.key}")
+    trial = refit_trial(setup, state, [a, b], {**screens[0].start, **screens[1].start},
+                        compile_raw(raw))
+    return None if trial is None else judge(setup, state, trial)
 
 
-def load_raw_netlist(raw):
-    """Type a raw netlist (for candidate generation on the current, patched netlist)."""
-    from circuitsim.netlist.load import build
+def _accept(setup: Setup, state: ModelState, winner: tuple[Trial, bool],
+            log: dict[str, Any]) -> ModelState:
+    trial, correction = winner
+    raw = state.raw
+    for c in trial.candidates:
+        raw = c.apply(raw)
+        log["trials"][c.key] = trial
+    model = compile_raw(raw)
+    bounds = {**state.bounds, **{n: (lo, hi) for c in trial.candidates
+                                 for n, (_, lo, hi) in c.free.items()}}
+    free = [*state.free, *(n for c in trial.candidates for n in c.free)]
+    # the short refit decided; polish the accepted model with a longer fit from there
+    fit = refit(setup, model, free, dict(trial.fit.params), bounds, nfev=40)
+    chosen = [*state.chosen, *(Choice(c, correction) for c in trial.candidates)]
+    setup.log(f"accepted {trial.key}" + (" (a correction of a declared term)"
+                                         if correction else "") + f": error {fit.error:.4g}")
+    return ModelState(raw, model, free, dict(fit.params), fit, bounds, chosen, state.base_raw)
 
-    return build(raw)
+
+def _backward(setup: Setup, state: ModelState, log: dict[str, Any]) -> ModelState:
+    """Stage 5: re-test each earlier choice with the others present; drop one whose removal
+    costs less than the BIC margin (a stand-in for an effect accepted later)."""
+    for i, choice in enumerate(state.chosen[:-1]):
+        others = [c for j, c in enumerate(state.chosen) if j != i]
+        raw = _base_raw(state, others)
+        gone = set(choice.candidate.free)
+        free = [n for n in state.free if n not in gone]
+        params = {k: v for k, v in state.params.items() if k not in gone}
+        try:
+            fit = refit(setup, compile_raw(raw), free, params, state.bounds, nfev=20)
+        except CircuitsimError:
+            continue
+        reduced = ModelState(raw, None, free, dict(fit.params), fit, state.bounds, others,
+                             state.base_raw)
+        verdict = judge(setup, reduced, Trial((choice.candidate,), state.fit))
+        if verdict.delta_bic >= -BIC_MARGIN:
+            setup.log(f"dropped {choice.candidate.key}: with the later effects in place it "
+                      f"is no longer needed ({verdict.note})")
+            log["rejected"].append({"effect": choice.candidate.effect,
+                                    "target": choice.candidate.target,
+                                    "reason": "dropped by the backward step: " + verdict.note})
+            reduced.model = compile_raw(raw)
+            return _backward(setup, reduced, log)
+    return state
 
 
-# ---------------------------------------------------------------------------- output
+def _base_raw(state: ModelState, chosen: list[Choice]):
+    """The declared netlist with the given choices' patches, in order."""
+    raw = state.base_raw
+    for c in chosen:
+        raw = c.candidate.apply(raw)
+    return raw
 
 
+# ------------------------------------------------------------------------------- report
+
+def report(setup: Setup, state0: ModelState, state: ModelState, log: dict[str, Any],
+           clock: dict[str, float]) -> Diagnosis:
+    """Stage 7: the Diagnosis, with the remaining structure described (stage 6)."""
+    fit0, final = state0.fit, state.fit
+    accepted, corrections = [], []
+    for choice in state.chosen:
+        c = choice.candidate
+        trial = log["trials"].get(c.key)
+        entry = Accepted(
+            c.effect, c.target,
+            {**{n: final.estimate[n] for n in c.free},
+             **({"order": c.fixed["order"]} if "order" in c.fixed else {})},
+            {n: (final.stderr[n] if math.isfinite(final.stderr[n]) else None)
+             for n in c.free}, final.error,
+            {"what": c.what, "delta_bic": trial.delta_bic if trial else None,
+             "structure_share": trial.share if trial else None,
+             "sse_before": trial.sse_before if trial else None,
+             "sse_after": trial.sse_after if trial else None,
+             "correction_of_declared_term": choice.correction})
+        (corrections if choice.correction else accepted).append(entry)
+    rest = remaining(setup, state)
+    analysis0 = analyse(state0.model, setup.record, fit0, setup.probes)
+    analysis1 = analyse(state.model, setup.record, final, setup.probes)
+    raw = _with_values(state.raw, final.params)
+    return Diagnosis(fit0.error, final.error, dict(fit0.errors), dict(final.errors), accepted,
+                     log["indistinct"], rest, analysis0, analysis1, raw, fit0, final,
+                     setup.record, dict(clock), log["rejected"], corrections,
+                     dict(setup.weights))

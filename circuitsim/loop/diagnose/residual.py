@@ -51,8 +51,6 @@ def _shaft_speed(model, sim) -> dict[str, float]:
 
 def analyse(model, record, fit_res, probes: Sequence[str]) -> dict[str, Any]:
     """Residual statistics, labelled spectral peaks, whiteness and regressor correlations."""
-    from circuitsim.signal import spectrum
-
     sim = fit_res.sim
     speeds = _shaft_speed(model, sim)
     t = record.t
@@ -68,28 +66,7 @@ def analyse(model, record, fit_res, probes: Sequence[str]) -> dict[str, Any]:
         r = np.asarray(fit_res.residuals[p])
         x = np.asarray(record[p])
         sigma = noise_sigma(r)
-        f, amp = spectrum(t, r)
-        floor = float(np.median(amp[1:])) if amp.size > 2 else 0.0
-        order = np.argsort(amp)[::-1]
-        peaks = []
-        for k in order[: 200]:
-            if f[k] <= 2 / (t[-1] - t[0]) or amp[k] < 8 * floor:
-                continue
-            if any(abs(f[k] - q["frequency"]) < 3 / (t[-1] - t[0]) for q in peaks):
-                continue
-            label = {}
-            for n, sp in out["shafts"].items():
-                w = np.asarray(sim[f"{n}.w"])
-                if np.std(w) > 0.02 * abs(np.mean(w)):
-                    continue  # the speed changes: only the angle spectrum can name orders
-                ratio = f[k] / sp["frequency"] if sp["frequency"] > 0 else 0
-                kk = round(ratio)
-                if kk >= 1 and abs(ratio - kk) < ORDER_TOL * kk:
-                    label[n] = kk
-            peaks.append({"frequency": float(f[k]), "amplitude": float(amp[k]),
-                          "orders": label})
-            if len(peaks) == 6:
-                break
+        peaks = _time_peaks(t, r, out["shafts"], sim)
         peaks += _order_peaks(sim, speeds, t, r, peaks)
         q, pval = ljung_box(r)
         corr = {}
@@ -113,6 +90,38 @@ def analyse(model, record, fit_res, probes: Sequence[str]) -> dict[str, Any]:
             "correlation": corr,
         }
     return out
+
+
+def _time_peaks(t: np.ndarray, r: np.ndarray, shafts: Mapping[str, Any], sim
+                ) -> list[dict[str, Any]]:
+    """The largest lines of the residual's time spectrum, labelled as shaft orders where a
+    shaft turns steadily. A line counts when its amplitude exceeds what noise reaches in any
+    bin with probability 1 % (Rayleigh amplitudes, Bonferroni over the bins), against the
+    median amplitude as the background."""
+    from circuitsim.signal import spectrum
+
+    f, amp = spectrum(t, r)
+    floor = float(np.median(amp[1:])) if amp.size > 2 else 0.0
+    level = math.sqrt(math.log(max(amp.size, 2) / 0.01) / math.log(2.0)) * floor
+    peaks: list[dict[str, Any]] = []
+    for k in np.argsort(amp)[::-1][:200]:
+        if f[k] <= 2 / (t[-1] - t[0]) or amp[k] < level:
+            continue
+        if any(abs(f[k] - q["frequency"]) < 3 / (t[-1] - t[0]) for q in peaks):
+            continue
+        label = {}
+        for n, sp in shafts.items():
+            w = np.asarray(sim[f"{n}.w"])
+            if np.std(w) > 0.02 * abs(np.mean(w)):
+                continue  # the speed changes: only the angle spectrum can name orders
+            ratio = f[k] / sp["frequency"] if sp["frequency"] > 0 else 0
+            kk = round(ratio)
+            if kk >= 1 and abs(ratio - kk) < ORDER_TOL * kk:
+                label[n] = kk
+        peaks.append({"frequency": float(f[k]), "amplitude": float(amp[k]), "orders": label})
+        if len(peaks) == 6:
+            break
+    return peaks
 
 
 def _order_peaks(sim, speeds, t, r, known) -> list[dict[str, Any]]:
@@ -139,9 +148,10 @@ def _order_peaks(sim, speeds, t, r, known) -> list[dict[str, Any]]:
         amp = np.abs(np.fft.rfft(x * win)) * 2 / win.sum()
         orders = np.fft.rfftfreq(m, (grid[1] - grid[0]) / (2 * math.pi))
         floor = float(np.median(amp[1:])) if amp.size > 2 else 0.0
+        level = math.sqrt(math.log(max(amp.size, 2) / 0.01) / math.log(2.0)) * floor
         for k in np.argsort(amp)[::-1][:200]:
             kk = round(orders[k])
-            if kk < 1 or abs(orders[k] - kk) > ORDER_TOL * kk or amp[k] < 8 * floor:
+            if kk < 1 or abs(orders[k] - kk) > ORDER_TOL * kk or amp[k] < level:
                 continue
             if any(p["orders"].get(n) == kk for p in known + out):
                 continue

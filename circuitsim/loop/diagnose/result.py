@@ -44,6 +44,8 @@ class Diagnosis:
     record: Any = field(repr=False, default=None)
     timings: dict[str, float] = field(default_factory=dict)
     rejected: list[dict[str, Any]] = field(default_factory=list)
+    corrections: list[Accepted] = field(default_factory=list)
+    noise: dict[str, float] = field(default_factory=dict)
 
     def as_dict(self) -> dict[str, Any]:
         return _clean({
@@ -54,6 +56,10 @@ class Diagnosis:
                          "evidence": a.evidence} for a in self.effects],
             "indistinct": self.indistinct, "remaining": self.remaining,
             "analysis_before": self.analysis_before, "analysis_after": self.analysis_after,
+            "corrections": [{"effect": a.effect, "target": a.target,
+                             "parameters": a.parameters, "stderr": a.stderr,
+                             "evidence": a.evidence} for a in self.corrections],
+            "noise": self.noise,
             "considered_not_accepted": self.rejected, "timings": self.timings,
             "final_fit": self.final_parameters(),
             "summary": self.summary(),
@@ -74,15 +80,22 @@ class Diagnosis:
                 for n in fit.free}
 
     def summary(self) -> str:
-        if not self.effects:
-            head = "nothing significant: no effect of the catalog explains the residual"
-        else:
+        structure = bool(self.remaining.get("structure"))
+        if self.effects:
             head = "; ".join(f"{a.effect} on {a.target} " +
-                             ", ".join(f"{k} = {v:.4g}" for k, v in a.parameters.items())
+                             ", ".join(f"{k} = {v:.4g}" for k, v in a.parameters.items()) +
+                             (f" [{a.evidence['interpolation']}]"
+                              if a.evidence.get("interpolation") else "")
                              for a in self.effects)
-        tail = ("; structure remains: " + self.remaining["note"]) if \
-            self.remaining.get("structure") else ""
-        return f"{head} (error {self.error_before:.4g} -> {self.error_after:.4g}){tail}"
+        elif structure:
+            head = "something remains that I cannot name: no effect of the catalog explains it"
+        else:
+            head = "nothing significant: no effect of the catalog explains the residual"
+        fixes = "".join(f"; corrected the declared {a.effect} on {a.target} (order "
+                        f"{a.parameters.get('order', '?')})" for a in self.corrections)
+        tail = ("; structure remains: " + self.remaining["note"]) if structure else ""
+        return (f"{head}{fixes} (error {self.error_before:.4g} -> {self.error_after:.4g})"
+                f"{tail}")
 
 
 def _clean(obj: Any) -> Any:

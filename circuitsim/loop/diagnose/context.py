@@ -1,0 +1,124 @@
+"""The plain objects the diagnosis stages pass to each other, and the simulations they share.
+
+``Setup`` is what does not change during a diagnosis (the record, the probes, their noise
+weights, the declared free parameters); ``ModelState`` is the model as it stands (raw
+netlist, compiled model, free parameters, fit, and what has been accepted so far).
+"""
+
+from __future__ import annotations
+
+import warnings
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from circuitsim.errors import CircuitsimError
+from circuitsim.loop.diagnose.noise import Whitener, whitened_sse, whiteners_of
+
+MAX_EFFECTS = 4  # new causes a diagnosis names at most
+
+
+@dataclass(frozen=True)
+class Setup:
+    """What a diagnosis holds fixed.
+
+    weights : each probe's noise standard deviation [probe unit]: the fit's residuals are
+        divided by it, so a probe counts by its signal-to-noise ratio, not its spread.
+    """
+
+    record: Any
+    probes: tuple[str, ...]
+    weights: Mapping[str, float]
+    declared: tuple[str, ...]
+    rtol: float
+    max_effects: int
+    say: Any = field(default=None, compare=False, repr=False)
+
+    @property
+    def n(self) -> int:
+        """Samples per probe."""
+        return int(self.record.t.size)
+
+    def log(self, message: str) -> None:
+        if self.say is not None:
+            self.say(message)
+
+
+@dataclass(frozen=True)
+class Choice:
+    """An accepted catalog candidate; ``correction``: it re-tunes a term the netlist already
+    declares (the same harmonic order on the same component), not a new cause."""
+
+    candidate: Any
+    correction: bool = False
+
+
+@dataclass
+class ModelState:
+    """The model as it stands: the netlist with the accepted patches, fitted."""
+
+    raw: Any
+    model: Any
+    free: list[str]
+    params: dict[str, float]
+    fit: Any
+    bounds: dict[str, tuple[float, float]]
+    chosen: list[Choice] = field(default_factory=list)
+    base_raw: Any = None  # the declared netlist, before any patch
+
+    def whitened(self, setup: Setup, whiteners: Mapping[str, Whitener] | None = None
+                 ) -> dict[str, float]:
+        """Per-probe sums of squares of the prewhitened residual (own filters by default)."""
+        w = whiteners or whiteners_of(self.fit.residuals, setup.probes)
+        return whitened_sse(self.fit.residuals, w, setup.probes)
+
+
+def compile_raw(raw):
+    """Compile a (patched) raw netlist; the cache makes a repeated topology cheap."""
+    from circuitsim.compiler.model import compile as compile_model
+    from circuitsim.netlist.load import build
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return compile_model(build(raw))
+
+
+def simulate(setup: Setup, model, params: Mapping[str, float], rtol: float | None = None):
+    """The model's transient on the record's grid, or None when it fails."""
+    rec = setup.record
+    try:
+        res = model.simulate(stop=float(rec.t[-1]), params=dict(params), t_eval=rec.t,
+                             rtol=rtol or setup.rtol, atol=model.netlist.analysis.atol)
+    except (CircuitsimError, ArithmeticError, ValueError):
+        return None  # a patch pushed to a bad value fails like a failed run
+    if not res.success or res.t.size != rec.t.size:
+        return None
+    return res
+
+
+def weighted(setup: Setup, series: Mapping[str, Any]) -> np.ndarray:
+    """Probe series divided by each probe's noise, concatenated."""
+    return np.concatenate([np.asarray(series[p], float) / setup.weights[p]
+                           for p in setup.probes])
+
+
+def refit(setup: Setup, model, free: Sequence[str], params: Mapping[str, float],
+          bounds: Mapping[str, tuple[float, float]], *, staged: bool = False,
+          nfev: int = 12):
+    """Least squares of ``free`` on the record, residuals weighted by the probes' noise."""
+    from circuitsim.loop.fit import fit_record
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        b = {k: v for k, v in bounds.items() if k in free}
+        return fit_record(model, setup.record, list(free), params=dict(params),
+                          bounds=b or None, probes=list(setup.probes), rtol=setup.rtol,
+                          staged=staged, max_nfev=100 if staged else nfev,
+                          weights=dict(setup.weights))
+
+
+def weighted_sse(setup: Setup, fit) -> float:
+    e = weighted(setup, fit.residuals)
+    return float(e @ e)

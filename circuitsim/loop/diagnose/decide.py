@@ -1,0 +1,131 @@
+"""Stages: refit a screened candidate with full simulation, and decide on it.
+
+The decision (see ``noise``): the BIC of prewhitened residuals falls by more than
+``BIC_MARGIN``; the candidate explains at least ``STRUCTURE_SHARE`` of the structure the
+residual holds (its significant spectral lines), so that a slice of an effect outside the
+catalog is no confident attribution; and no parameter of it ends on a bound of its physical
+range (an effect that only fits at a bound is a stand-in for something else).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from circuitsim.errors import CircuitsimError
+from circuitsim.loop.diagnose.context import (
+    ModelState,
+    Setup,
+    refit,
+    simulate,
+    weighted,
+    weighted_sse,
+)
+from circuitsim.loop.diagnose.noise import delta_bic, significant_lines, whiteners_of
+
+BIC_MARGIN = 10.0  # "very strong" evidence on the Kass-Raftery scale
+STRUCTURE_SHARE = 0.3  # share of the residual's significant structure an effect must explain
+
+
+@dataclass
+class Trial:
+    """A refitted candidate set and its verdict against the model it would extend."""
+
+    candidates: tuple[Any, ...]
+    fit: Any
+    delta_bic: float = math.inf
+    share: float = 0.0
+    at_bound: tuple[str, ...] = ()
+    note: str = ""
+    sse_before: float = 0.0
+    sse_after: float = 0.0
+    evidence: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def passed(self) -> bool:
+        return self.delta_bic < -BIC_MARGIN and self.share >= STRUCTURE_SHARE and \
+            not self.at_bound
+
+    @property
+    def key(self) -> str:
+        return " + ".join(c.key for c in self.candidates)
+
+
+def refit_trial(setup: Setup, state: ModelState, candidates: Sequence[Any],
+                starts: Mapping[str, float], model) -> Trial | None:
+    """Refit the candidates (with everything free so far) from the screen's starts; a refit
+    that ends worse than it began is retried with the new parameters alone first (the
+    angle-locked phase of a harmonic finds its basin), then all together."""
+    free = [*state.free, *(n for c in candidates for n in c.free)]
+    params = {**state.params, **starts}
+    bounds = {**state.bounds, **{n: (lo, hi) for c in candidates
+                                 for n, (_, lo, hi) in c.free.items()}}
+    start_sim = simulate(setup, model, params)
+    start_sse = math.inf if start_sim is None else float(np.sum(np.square(
+        weighted(setup, {p: setup.record[p] - start_sim[p] for p in setup.probes}))))
+    try:
+        fit = refit(setup, model, free, params, bounds)
+    except CircuitsimError:
+        fit = None
+    if fit is None or weighted_sse(setup, fit) > start_sse * (1 + 1e-9):
+        new = [n for c in candidates for n in c.free]
+        try:
+            first = refit(setup, model, new, params, bounds, nfev=20)
+            fit = refit(setup, model, free, dict(first.params), bounds, nfev=20)
+        except CircuitsimError as exc:
+            setup.log(f"  refit of {' + '.join(c.key for c in candidates)} failed: {exc}")
+            return None
+    return Trial(tuple(candidates), fit)
+
+
+def judge(setup: Setup, state: ModelState, trial: Trial) -> Trial:
+    """Fill in the trial's verdict: ΔBIC on prewhitened residuals (the filter estimated on
+    the richer model's residual), the share of structure explained, bounds reached."""
+    probes = setup.probes
+    whiten = whiteners_of(trial.fit.residuals, probes)
+    old = state.whitened(setup, whiten)
+    new = {p: float(np.sum(np.square(whiten[p].apply(trial.fit.residuals[p]))))
+           for p in probes}
+    k = sum(len(c.free) for c in trial.candidates)
+    trial.delta_bic = delta_bic(new, old, setup.n, k, probes)
+    gain = structured = 0.0
+    for p in probes:
+        e = whiten[p].apply(state.fit.residuals[p])
+        var = max(new[p] / max(e.size, 1), 1e-300)  # the probe's whitened noise variance
+        lines = significant_lines(e, float(np.mean(np.diff(setup.record.t))))
+        gain += (old[p] - new[p]) / var
+        structured += lines.structured / var
+    trial.share = gain / structured if structured > 0 else (1.0 if gain > 0 else 0.0)
+    trial.at_bound = _at_bound(trial)
+    trial.sse_before, trial.sse_after = weighted_sse(setup, state.fit), \
+        weighted_sse(setup, trial.fit)
+    trial.note = _note(trial)
+    return trial
+
+
+def _at_bound(trial: Trial) -> tuple[str, ...]:
+    """Parameters that end on a bound other than their null value (the physical range's
+    edge): the effect fits only by being pushed against it."""
+    out = []
+    for c in trial.candidates:
+        for n, (null, lo, hi) in c.free.items():
+            v = trial.fit.params[n]
+            tol = 1e-6 * max(abs(lo), abs(hi), 1e-12)
+            if (abs(v - lo) <= tol and lo != null) or (abs(v - hi) <= tol and hi != null):
+                out.append(n)
+    return tuple(out)
+
+
+def _note(trial: Trial) -> str:
+    if trial.at_bound:
+        return f"fits only with {', '.join(trial.at_bound)} at the edge of its physical range"
+    if trial.delta_bic >= -BIC_MARGIN:
+        return f"not significant (ΔBIC {trial.delta_bic:.1f} on prewhitened residuals)"
+    if trial.share < STRUCTURE_SHARE:
+        return (f"significant (ΔBIC {trial.delta_bic:.1f}) but explains only "
+                f"{trial.share:.0%} of the structure the residual holds")
+    return f"ΔBIC {trial.delta_bic:.1f}, explains {trial.share:.0%} of the structure"

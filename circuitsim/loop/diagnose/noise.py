@@ -1,0 +1,142 @@
+"""Stage: a noise model for the residual, so that test statistics mean what they say.
+
+Measured noise is rarely white: an anti-alias filter, a speed estimate from encoder counts or
+a drifting offset colour it. An output-error fit whose residual is coloured looks far more
+certain than it is, and a likelihood-ratio test on it accepts effects that only fit the
+noise's slow wander. Each probe's residual is therefore *prewhitened* by an autoregressive
+filter (order chosen by BIC, Levinson-Durbin on the sample autocovariance) before any sum of
+squares is compared.
+
+Two models are compared with the filter estimated on the residual of the *richer* one: that
+residual is the closer to pure noise, and a filter estimated on the poorer one would learn the
+missing effect as "predictable noise" and hide it.
+
+The decision never divides by an estimate of the noise floor: a few-percent error of that
+estimate is as large as a marginal effect's whole signature. The likelihood ratio uses the
+ratio of each probe's whitened sums of squares (a profile likelihood with a free noise
+variance per probe), which needs no floor at all; the share of *structure* an effect explains
+is measured against the significant lines of the whitened residual's periodogram, whose
+background is a median over the spectrum, not a global floor.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+MAX_AR_ORDER = 6
+LINE_FALSE_ALARM = 0.01  # chance that pure noise shows one "significant" line in a spectrum
+
+
+@dataclass(frozen=True)
+class Whitener:
+    """An AR(p) prewhitening filter e[n] = r[n] + a1 r[n-1] + ... + ap r[n-p]."""
+
+    a: tuple[float, ...]  # (a1 .. ap); () is white
+    sigma: float  # innovation standard deviation [probe unit]
+
+    def apply(self, r: np.ndarray) -> np.ndarray:
+        r = np.asarray(r, float)
+        if not self.a:
+            return r
+        p = len(self.a)
+        out = r[p:].copy()
+        for k, ak in enumerate(self.a, start=1):
+            out += ak * r[p - k:r.size - k]
+        return out
+
+
+def _autocovariance(r: np.ndarray, lags: int) -> np.ndarray:
+    x = r - r.mean()
+    n = x.size
+    f = np.fft.rfft(x, 2 * n)
+    acov = np.fft.irfft(f * np.conj(f))[: lags + 1] / n
+    return acov
+
+
+def fit_whitener(r: np.ndarray, max_order: int = MAX_AR_ORDER) -> Whitener:
+    """The AR prewhitening filter of a residual, its order chosen by BIC (0 = white)."""
+    r = np.asarray(r, float)
+    n = r.size
+    acov = _autocovariance(r, max_order)
+    if acov[0] <= 0.0 or n < 10 * (max_order + 1):
+        return Whitener((), float(math.sqrt(max(acov[0], 0.0))))
+    best = (n * math.log(acov[0]), (), acov[0])
+    a = np.zeros(0)
+    err = acov[0]
+    for p in range(1, max_order + 1):  # Levinson-Durbin recursion
+        k = -(acov[p] + float(a @ acov[p - 1:0:-1])) / err if p > 1 else -acov[1] / err
+        a = np.concatenate([a + k * a[::-1], [k]])
+        err *= 1.0 - k * k
+        if err <= 0.0:
+            break
+        bic = n * math.log(err) + p * math.log(n)
+        if bic < best[0] - 2.0:
+            best = (bic, tuple(float(v) for v in a), err)
+    return Whitener(best[1], float(math.sqrt(best[2])))
+
+
+def whitened_sse(residuals: Mapping[str, np.ndarray], whiteners: Mapping[str, Whitener],
+                 probes: Sequence[str]) -> dict[str, float]:
+    """Sum of squares of each probe's prewhitened residual [probe unit^2]."""
+    out = {}
+    for p in probes:
+        e = whiteners[p].apply(residuals[p])
+        out[p] = float(e @ e)
+    return out
+
+
+def whiteners_of(residuals: Mapping[str, np.ndarray], probes: Sequence[str]
+                 ) -> dict[str, Whitener]:
+    return {p: fit_whitener(np.asarray(residuals[p], float)) for p in probes}
+
+
+def delta_bic(sse_new: Mapping[str, float], sse_old: Mapping[str, float], n: int,
+              k: int, probes: Sequence[str]) -> float:
+    """BIC change of adding ``k`` parameters: a Gaussian profile likelihood with its own
+    noise variance per probe, on prewhitened residuals of ``n`` samples a probe."""
+    ll = sum(n * math.log(max(sse_new[p], 1e-300) / max(sse_old[p], 1e-300)) for p in probes)
+    return ll + k * math.log(n * len(probes))
+
+
+def line_threshold(n_bins: int) -> float:
+    """Power, in units of the background mean, that pure noise exceeds in any of ``n_bins``
+    periodogram bins with probability LINE_FALSE_ALARM (exponential bins, Bonferroni)."""
+    return math.log(max(n_bins, 1) / LINE_FALSE_ALARM)
+
+
+@dataclass(frozen=True)
+class Lines:
+    """Significant lines of a whitened residual's periodogram."""
+
+    freqs: np.ndarray  # [Hz] of each significant bin
+    excess: np.ndarray  # its power above the background [probe unit^2, as a share of SSE]
+    total: float  # sum of squares of the whitened residual
+    structured: float  # sum of the excess powers (same unit as total)
+
+
+def significant_lines(e: np.ndarray, dt: float) -> Lines:
+    """The periodogram bins of ``e`` (white up to structure) that noise cannot explain.
+
+    Parseval's scaling: the bins' powers sum to the sum of squares of ``e``, so ``structured``
+    is directly comparable with a fit's gain in sum of squares.
+    """
+    e = np.asarray(e, float)
+    n = e.size
+    spec = np.abs(np.fft.rfft(e)) ** 2
+    weight = np.full(spec.size, 2.0)
+    weight[0] = 1.0
+    if n % 2 == 0:
+        weight[-1] = 1.0
+    power = spec * weight / n  # sums to e @ e
+    body = power[1:] if power.size > 2 else power
+    background = float(np.median(body)) / math.log(2.0) if body.size else 0.0
+    if background <= 0.0:
+        return Lines(np.zeros(0), np.zeros(0), float(e @ e), 0.0)
+    hit = power > line_threshold(power.size) * background
+    freqs = np.fft.rfftfreq(n, dt)[hit]
+    excess = power[hit] - background
+    return Lines(freqs, excess, float(e @ e), float(excess.sum()))

@@ -1,0 +1,168 @@
+"""Stages: propose candidates from the catalog, and screen them by a linearised fit gain.
+
+A score test projects the residual on each candidate's sensitivity at its null value (one
+short simulation per free parameter, plus the base run); its least-squares coefficients are
+the candidate's start values, complete for every free parameter. Effects a linearisation
+cannot see at their null value (saturation) are screened on a small grid instead.
+
+Screening compares phase-insensitive slow features (windowed means and ripple RMS, as the
+fit's first stage) for effects that change the speed: a ripple locked to the rotor angle
+slides out of phase as soon as the speed changes, and a linearisation of the raw waveform then
+points anywhere. Harmonic candidates leave the speed alone to first order and are screened on
+the waveform, where the phase tells a torque (cogging) from a voltage (EMF harmonic).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from circuitsim.loop.diagnose.context import (
+    ModelState,
+    Setup,
+    compile_raw,
+    simulate,
+    weighted,
+)
+
+
+@dataclass(frozen=True)
+class Proposal:
+    """A catalog candidate for this round; ``correction`` when it only re-tunes a term the
+    netlist declares (the same order on the same component)."""
+
+    candidate: Any
+    correction: bool
+
+
+@dataclass(frozen=True)
+class Screen:
+    """A candidate's linearised gain: the share of the projected residual it explains, and
+    start values for every one of its free parameters [SI]."""
+
+    proposal: Proposal
+    share: float
+    start: Mapping[str, float]
+    model: Any
+
+
+def propose(setup: Setup, state: ModelState, orders: Mapping[str, list[int]],
+            tried: set[str]) -> list[Proposal]:
+    """The catalog's candidates not yet chosen nor rejected, each flagged when it re-tunes a
+    declared term."""
+    from circuitsim.loop import effects
+    from circuitsim.netlist.load import build
+
+    declared = effects.declared_orders(state.raw)
+    chosen = {c.candidate.key for c in state.chosen}
+    out = []
+    for c in effects.candidates(build(state.raw), orders, setup.probes):
+        if c.key in tried or c.key in chosen:
+            continue
+        order = c.fixed.get("order")
+        same = order is not None and int(order) in declared.get(
+            ("cogging" if c.effect == "unbalance" else c.effect, c.target), set())
+        out.append(Proposal(c, same))
+    return out
+
+
+Projector = Callable[[Any], np.ndarray]
+
+
+def projections(setup: Setup, model) -> tuple[Projector, Projector, bool]:
+    """(slow-feature projector, waveform projector, whether a shaft turns)."""
+    from circuitsim.loop.fit import slow_features, smoothing_windows
+
+    rec = setup.record
+    W = smoothing_windows(rec.t, [np.asarray(rec[p]) for p in setup.probes])
+
+    def slow(y) -> np.ndarray:
+        return np.concatenate([slow_features(W, np.asarray(y[p], float)) / setup.weights[p]
+                               for p in setup.probes])
+
+    def wave(y) -> np.ndarray:
+        return weighted(setup, y)
+
+    rotating = "rotational" in model.meta.get("integrals", {}).values()
+    return slow, wave, rotating
+
+
+def screen(setup: Setup, state: ModelState, proposal: Proposal, project: Projector,
+           noise: float) -> Screen | None:
+    """Score test of one candidate (see the module docstring); None when it cannot run or
+    acts on nothing measured (its sensitivity stays within the solver's own noise)."""
+    cand = proposal.candidate
+    model = compile_raw(cand.apply(state.raw))
+    base = {**state.params, **{k: v[0] for k, v in cand.free.items()}}
+    y0 = simulate(setup, model, base)
+    if y0 is None:
+        return None
+    e0 = project(setup.record) - project(y0)
+    norm0 = float(e0 @ e0)
+    if norm0 <= 0.0:
+        return None
+    if cand.grid:
+        return _grid(setup, proposal, model, base, y0, e0, project, norm0)
+    cols = []
+    for name in cand.free:
+        col = _sensitivity(setup, model, base, name, cand.steps.get(name, 1e-3), y0,
+                           project, noise)
+        if col is None:
+            return None
+        cols.append(col)
+    S = np.column_stack(cols)
+    coef, *_ = np.linalg.lstsq(S, e0, rcond=None)
+    gain = float(e0 @ (S @ coef))
+    start = {n: _inside(cand.free[n], base[n] + float(c))
+             for n, c in zip(cand.free, coef, strict=True)}
+    return Screen(proposal, gain / norm0, start, model)
+
+
+def _inside(spec: tuple[float, float, float], value: float) -> float:
+    _, lo, hi = spec
+    return min(max(value, lo), hi)
+
+
+def _sensitivity(setup: Setup, model, base: Mapping[str, float], name: str, h: float, y0,
+                 project: Projector, noise: float) -> np.ndarray | None:
+    """d(projection)/d(parameter) by a step sized to stay above the solver's noise and
+    below the non-linear range."""
+    size = 0.0
+    for _ in range(3):
+        y = simulate(setup, model, {**base, name: base[name] + h})
+        if y is None:
+            return None
+        col = (project(y) - project(y0)) / h
+        size = float(np.linalg.norm(col * h))
+        if size < max(1e-7 * math.sqrt(col.size), 10 * noise):
+            h *= 100  # invisible above the solver's noise: a bigger step
+        elif size > 0.3 * math.sqrt(col.size):
+            h /= 30  # far from linear: a smaller one
+        else:
+            return col
+    return col if size >= 10 * noise else None
+
+
+def _grid(setup: Setup, proposal: Proposal, model, base: Mapping[str, float], y0,
+          e0: np.ndarray, project: Projector, norm0: float) -> Screen | None:
+    """Effects invisible to a linearisation at null: a few values of the first parameter,
+    scaled by the target's current where it has one; the others keep their start values."""
+    cand = proposal.candidate
+    first = next(iter(cand.free))
+    key = f"{cand.target}.i"
+    scale = max(float(np.max(np.abs(y0[key]))), 1e-9) if key in y0.names else 1.0
+    best: Screen | None = None
+    for g in cand.grid:
+        trial = {**base, first: _inside(cand.free[first], g * scale)}
+        y = simulate(setup, model, trial)
+        if y is None:
+            continue
+        e = e0 - (project(y) - project(y0))
+        share = (norm0 - float(e @ e)) / norm0
+        if best is None or share > best.share:
+            best = Screen(proposal, share, {n: trial[n] for n in cand.free}, model)
+    return best
