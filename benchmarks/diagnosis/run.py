@@ -56,18 +56,21 @@ def load_truth() -> list[dict]:
 def _api():
     import circuitsim
 
+    pkg = Path(circuitsim.__file__).parent
     diag = getattr(circuitsim, "diagnose", None)
     if not callable(diag):
-        try:
-            from circuitsim.loop.diagnose import diagnose as diag
-        except ImportError:
+        # an old layout has circuitsim/diagnose.py; import only from the checkout that
+        # provided circuitsim (an editable install elsewhere may supply other subpackages)
+        if (pkg / "diagnose.py").exists():
             from circuitsim.diagnose import diagnose as diag
+        else:
+            from circuitsim.loop.diagnose import diagnose as diag
     rec = getattr(circuitsim, "Record", None)
     if rec is None:
-        try:
-            from circuitsim.loop.record import Record as rec
-        except ImportError:
+        if (pkg / "data.py").exists():
             from circuitsim.data import Record as rec
+        else:
+            from circuitsim.loop.record import Record as rec
     return circuitsim, diag, rec
 
 
