@@ -29,7 +29,7 @@ import numpy as np
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
-import simulators as sims  # noqa: E402
+import simulators as sims
 
 RECORDS = HERE / "records"
 TRUTH = HERE / "truth.json"
@@ -259,7 +259,7 @@ def record_specs() -> list[dict]:
     rec("o02", "outside", A, "fast", lambda a: add(outside(
         "torsional-resonance", {"torsion": _torsion(4.57e-6, 2e-6, 300.0, 0.05)},
         dict(zip(("J2_kgm2", "k_shaft_Nm_rad", "c_shaft_Nms_rad"),
-                 _torsion(4.57e-6, 2e-6, 300.0, 0.05)), resonance_Hz=300.0))))
+                 _torsion(4.57e-6, 2e-6, 300.0, 0.05), strict=True), resonance_Hz=300.0))))
     rec("o03", "outside", B, "fast", lambda a: add(outside(
         "pwm-chopper", {"chopper": (0.15, 3000.0, 0.1)},
         {"amplitude_V": 0.15, "frequency_Hz": 3000.0,
@@ -273,7 +273,7 @@ def record_specs() -> list[dict]:
     rec("o06", "outside", B, "slow", lambda a: add(outside(
         "torsional-resonance", {"torsion": _torsion(4e-6, 3e-6, 40.0, 0.1)},
         dict(zip(("J2_kgm2", "k_shaft_Nm_rad", "c_shaft_Nms_rad"),
-                 _torsion(4e-6, 3e-6, 40.0, 0.1)), resonance_Hz=40.0))))
+                 _torsion(4e-6, 3e-6, 40.0, 0.1), strict=True), resonance_Hz=40.0))))
 
     # the split: within each class, in id order, every third record is held out
     by_class: dict[str, int] = {}
@@ -292,7 +292,7 @@ _NULL_CACHE: dict = {}
 
 def _grid(motor, regime):
     fs, dur, _ = REGIMES[(motor, regime)]
-    return np.arange(int(round(dur * fs)) + 1) / fs
+    return np.arange(round(dur * fs) + 1) / fs
 
 
 def _null(motor, regime):
@@ -391,7 +391,7 @@ def main() -> int:
         if only and spec["id"] not in only:
             continue
         t0 = time.perf_counter()
-        fx, effects, clean, sig = build(spec)
+        _fx, effects, clean, sig = build(spec)
         entry = truth_entry(spec, effects, sig)
         truth[spec["id"]] = entry
         if not args.truth_only:

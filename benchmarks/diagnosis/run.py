@@ -135,8 +135,8 @@ def child(rid: str) -> int:
         out["noise_floor"] = floors
         try:
             out["final_fit"] = d.final_parameters()
-        except Exception:  # noqa: BLE001 - optional
-            pass
+        except Exception as exc:  # noqa: BLE001 - optional
+            out["final_fit"] = f"unavailable: {exc}"
     except Exception as exc:  # noqa: BLE001 - the benchmark records every failure
         out["error"] = f"{type(exc).__name__}: {exc}"
         out["traceback"] = traceback.format_exc()[-4000:]

@@ -57,6 +57,7 @@ Sensor effects (applied to the simulated probes, before noise; per probe):
 from __future__ import annotations
 
 import math
+from itertools import pairwise
 from pathlib import Path
 
 import numpy as np
@@ -108,8 +109,7 @@ def write_aprbs(path: Path = APRBS_FILE) -> None:
     path.parent.mkdir(parents=True, exist_ok=True)
     with open(path, "w", encoding="utf-8") as fh:
         fh.write("time,u\n")
-        for a, b in zip(tt, uu, strict=True):
-            fh.write(f"{a:.6f},{b:.6f}\n")
+        fh.writelines(f"{a:.6f},{b:.6f}\n" for a, b in zip(tt, uu, strict=True))
 
 
 def read_aprbs(path: Path = APRBS_FILE):
@@ -278,7 +278,7 @@ def simulate(motor: str, regime: str, t: np.ndarray, fx: dict | None = None,
     if motor == "A":
         x0[3] = 0.0  # capacitor uncharged, as circuitsim starts from rest
     out = np.empty((6, times.size))
-    for a, b in zip(edges[:-1], edges[1:], strict=True):
+    for a, b in pairwise(edges):
         sel = (times >= a) & ((times < b) | (b == edges[-1]))
         sol = solve_ivp(rhs, (a, b), x0, method=method, rtol=rtol, atol=atol,
                         max_step=max_step, dense_output=True)

@@ -9,7 +9,6 @@ largest difference relative to the signal's range. The target is below 1e-4.
 
 from __future__ import annotations
 
-import math
 import os
 import sys
 import tempfile
@@ -23,7 +22,7 @@ HERE = Path(__file__).resolve().parent
 ROOT = HERE.parents[1]
 sys.path.insert(0, str(HERE))
 
-import simulators as sims  # noqa: E402
+import simulators as sims
 
 CASES = [  # motor, regime, netlist, sample rate [Hz], duration [s]
     ("A", "fast", ROOT / "netlists" / "kim2024" / "base.yaml", 50e3, 0.4),
@@ -39,7 +38,7 @@ def main() -> int:
 
     worst = 0.0
     for motor, regime, path, fs, dur in CASES:
-        t = np.arange(int(round(dur * fs)) + 1) / fs
+        t = np.arange(round(dur * fs) + 1) / fs
         t0 = time.perf_counter()
         ref = sims.simulate(motor, regime, t)
         t_ref = time.perf_counter() - t0
