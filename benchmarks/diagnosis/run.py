@@ -169,10 +169,15 @@ def _is_declared(acc: dict, declared: list[dict]) -> bool:
                for d in declared)
 
 
-def _param_errors(acc: dict, expected: dict) -> dict[str, float]:
+def _param_errors(acc: dict, expected: dict, final: dict | None = None) -> dict[str, float]:
     """Relative error of each expected catalog parameter (by name suffix); a harmonic's
-    (a, b) pair is compared as amplitude and phase."""
-    params = acc.get("parameters", {})
+    (a, b) pair is compared as amplitude and phase. ``final``: the final fit of all free
+    parameters together (an effect's own ``parameters`` are its values when it was accepted;
+    later effects move them), used where it has the name."""
+    final = final if isinstance(final, dict) else {}
+    params = {k: (final[k]["estimate"] if isinstance(final.get(k), dict) and
+                  final[k].get("estimate") is not None else v)
+              for k, v in acc.get("parameters", {}).items()}
 
     def find(suffix):
         for k, v in params.items():
@@ -222,7 +227,8 @@ def score(entry: dict, res: dict | None) -> dict:
             used.add(hit[0])
             matches.append({"truth": e["effect"], "accepted": f"{hit[1]['effect']} on "
                             f"{hit[1]['target']}",
-                            "errors": _param_errors(hit[1], hit[2].get("expected", {}))})
+                            "errors": _param_errors(hit[1], hit[2].get("expected", {}),
+                                                    res.get("final_fit"))})
     extra = [a for i, a in enumerate(new) if i not in used]
     missed = [e["effect"] for e in truth if e["effect"] not in {m["truth"] for m in matches}]
     if not new:
@@ -304,11 +310,12 @@ def report(entries: list[dict], title: str) -> tuple[int, int]:
         if res.get("status") != "ok":
             print(f"    FAILED  : {res.get('status')}: {res.get('error', '')[:300]}")
             continue
-        print(f"    accepted: {_fmt_effects(res)}")
+        print(f"    accepted: {_fmt_effects(res)}  (values when accepted)")
         for m in sc["matches"]:
             errs = ", ".join(f"{k} {v:+.1%}" if k != "phase_rad" else f"phase {v:+.3f} rad"
                              for k, v in m["errors"].items())
-            print(f"      {m['truth']} <- {m['accepted']}: {errs or 'no comparable parameter'}")
+            print(f"      {m['truth']} <- {m['accepted']}: {errs or 'no comparable parameter'}"
+                  " (final fit vs truth)")
         if sc["declared"]:
             print(f"    declared-term corrections (not scored): {', '.join(sc['declared'])}")
         nf = res.get("noise_floor", {}).get("after", {})
