@@ -1,0 +1,411 @@
+"""Run circuitsim's diagnosis on the benchmark records and score it against truth.json.
+
+    python benchmarks/diagnosis/run.py --split tune          # or heldout, all
+    python benchmarks/diagnosis/run.py --only c01,n02 --timeout 600
+    python benchmarks/diagnosis/run.py --split all --score-only   # re-print from results/
+
+Each record is diagnosed in a fresh child process (``--child ID``) with a wall-clock timeout;
+its result goes to results/<id>.json (git-ignored) as soon as it is done, so an interrupted
+run resumes where it stopped (``--rerun`` recomputes). A missing record CSV is generated
+first (make_records.py --only ID). ``--circuitsim DIR`` puts a circuitsim checkout first on
+the child's path (default: whatever the interpreter imports).
+
+The API is looked up as ``circuitsim.diagnose`` (a callable exported at the top level), then
+``circuitsim.loop.diagnose.diagnose``, then the old ``circuitsim.diagnose.diagnose``; the
+record type as ``circuitsim.Record``, ``circuitsim.loop.record.Record``, then
+``circuitsim.data.Record``. It is called as ``diagnose(netlist, record, free, probes=...)``.
+
+Scoring (README.md): a catalog or two-effect record is right when the set of accepted effect
+ids equals the truth set (targets and harmonic orders matching; a physically identical label
+listed in ``also_accept`` counts, e.g. force-offset for Coulomb friction on a shaft that never
+reverses); an accepted correction of a term the netlist already declares (``declared_terms``,
+e.g. an EMF harmonic of order 8 on motor A) is reported but not scored. A null record is
+right when nothing is accepted; an outside record when no catalog effect is accepted and the
+report flags remaining structure.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import time
+import traceback
+from pathlib import Path
+
+import numpy as np
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parents[1]
+RESULTS = HERE / "results"
+TRUTH = HERE / "truth.json"
+CLASSES = ("null", "catalog", "two", "outside")
+VERDICTS = ("right", "nothing", "nothing+structure", "partial", "wrong", "failed")
+
+
+def load_truth() -> list[dict]:
+    return json.loads(TRUTH.read_text())["records"]
+
+
+# ------------------------------------------------------------------------- the child
+
+def _api():
+    import circuitsim
+
+    pkg = Path(circuitsim.__file__).parent
+    diag = getattr(circuitsim, "diagnose", None)
+    if not callable(diag):
+        # an old layout has circuitsim/diagnose.py; import only from the checkout that
+        # provided circuitsim (an editable install elsewhere may supply other subpackages)
+        if (pkg / "diagnose.py").exists():
+            from circuitsim.diagnose import diagnose as diag
+        else:
+            from circuitsim.loop.diagnose import diagnose as diag
+    rec = getattr(circuitsim, "Record", None)
+    if rec is None:
+        if (pkg / "data.py").exists():
+            from circuitsim.data import Record as rec
+        else:
+            from circuitsim.loop.record import Record as rec
+    return circuitsim, diag, rec
+
+
+def _jsonable(obj):
+    if isinstance(obj, dict):
+        return {str(k): _jsonable(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_jsonable(v) for v in obj]
+    if isinstance(obj, (np.floating, float)):
+        return float(obj) if math.isfinite(obj) else None
+    if isinstance(obj, np.integer):
+        return int(obj)
+    if isinstance(obj, np.bool_):
+        return bool(obj)
+    if isinstance(obj, (str, int, bool)) or obj is None:
+        return obj
+    return repr(obj)
+
+
+def child(rid: str) -> int:
+    import warnings
+
+    warnings.simplefilter("ignore")
+    entry = next(e for e in load_truth() if e["id"] == rid)
+    out = {"id": rid, "status": "error"}
+    t0 = time.perf_counter()
+    try:
+        cs, diagnose, Record = _api()
+        out["api"] = f"{diagnose.__module__}.{diagnose.__name__}"
+        arr = np.loadtxt(ROOT / entry["csv"], delimiter=",", skiprows=1)
+        header = (ROOT / entry["csv"]).read_text().split("\n", 1)[0].strip().split(",")
+        cols = {h: arr[:, j].copy() for j, h in enumerate(header) if h != "time"}
+        record = Record(arr[:, header.index("time")].copy(), cols, str(ROOT / entry["csv"]))
+        net = cs.load(ROOT / entry["netlist"])
+        d = diagnose(net, record, entry["free"], probes=entry["probes"])
+        out["status"] = "ok"
+        out["summary"] = d.summary()
+        out["error_before"] = d.error_before
+        out["error_after"] = d.error_after
+        out["errors_before"] = getattr(d, "errors_before", None)
+        out["errors_after"] = getattr(d, "errors_after", None)
+        out["effects"] = [{"effect": a.effect, "target": a.target,
+                           "parameters": dict(a.parameters), "stderr": dict(a.stderr),
+                           "error_after": a.error_after,
+                           "evidence": {k: v for k, v in a.evidence.items()
+                                        if k in ("delta_bic", "explained_fraction", "what",
+                                                 "revised")}}
+                          for a in d.effects]
+        rem = dict(d.remaining)
+        rem.pop("peaks", None)
+        out["remaining"] = rem
+        out["remaining_peaks"] = [{k: pk.get(k) for k in ("frequency", "amplitude", "orders")}
+                                  for pk in (d.remaining.get("peaks") or [])][:6]
+        out["indistinct"] = list(getattr(d, "indistinct", []))
+        out["rejected"] = list(getattr(d, "rejected", []))
+        out["timings"] = dict(getattr(d, "timings", {}))
+        floors = {}
+        for when in ("analysis_before", "analysis_after"):
+            a = getattr(d, when, None) or {}
+            floors[when.split("_")[1]] = {p: v.get("noise_sigma")
+                                          for p, v in a.get("probes", {}).items()}
+        out["noise_floor"] = floors
+        try:
+            out["final_fit"] = d.final_parameters()
+        except Exception as exc:  # noqa: BLE001 - optional
+            out["final_fit"] = f"unavailable: {exc}"
+    except Exception as exc:  # noqa: BLE001 - the benchmark records every failure
+        out["error"] = f"{type(exc).__name__}: {exc}"
+        out["traceback"] = traceback.format_exc()[-4000:]
+    out["wall_s"] = time.perf_counter() - t0
+    RESULTS.mkdir(exist_ok=True)
+    tmp = RESULTS / f".{rid}.json.tmp"
+    tmp.write_text(json.dumps(_jsonable(out), indent=1))
+    os.replace(tmp, RESULTS / f"{rid}.json")
+    return 0
+
+
+# ----------------------------------------------------------------------- scoring
+
+def _label_match(acc: dict, label: dict) -> bool:
+    if acc["effect"] != label["effect"]:
+        return False
+    targets = label.get("targets")
+    if targets and acc.get("target") not in targets:
+        return False
+    order = label.get("order")
+    if order is not None:
+        got = acc.get("parameters", {}).get("order")
+        if got is None or abs(float(got) - order) > 1e-9:
+            return False
+    return True
+
+
+def _is_declared(acc: dict, declared: list[dict]) -> bool:
+    return any(_label_match(acc, {**d, "targets": [d["target"]] if d.get("target") else None})
+               for d in declared)
+
+
+def _param_errors(acc: dict, expected: dict, final: dict | None = None) -> dict[str, float]:
+    """Relative error of each expected catalog parameter (by name suffix); a harmonic's
+    (a, b) pair is compared as amplitude and phase. ``final``: the final fit of all free
+    parameters together (an effect's own ``parameters`` are its values when it was accepted;
+    later effects move them), used where it has the name."""
+    final = final if isinstance(final, dict) else {}
+    params = {k: (final[k]["estimate"] if isinstance(final.get(k), dict) and
+                  final[k].get("estimate") is not None else v)
+              for k, v in acc.get("parameters", {}).items()}
+
+    def find(suffix):
+        for k, v in params.items():
+            if k == suffix or k.endswith("_" + suffix):
+                return v
+        return None
+
+    out = {}
+    if "a" in expected and "b" in expected:
+        a, b = find("a"), find("b")
+        if a is not None and b is not None:
+            amp_t = math.hypot(expected["a"], expected["b"])
+            out["amplitude"] = (math.hypot(a, b) - amp_t) / amp_t
+            dphi = math.atan2(b, a) - math.atan2(expected["b"], expected["a"])
+            out["phase_rad"] = (dphi + math.pi) % (2 * math.pi) - math.pi
+        return out
+    for k, v in expected.items():
+        got = find(k)
+        if got is not None and v:
+            out[k] = (got - v) / abs(v)
+    return out
+
+
+def score(entry: dict, res: dict | None) -> dict:
+    """Verdict of one record: right / nothing / nothing+structure / partial / wrong / failed,
+    with the matched effects and their parameter errors."""
+    if res is None or res.get("status") != "ok":
+        return {"verdict": "failed", "right": False, "matches": [], "extra": [],
+                "declared": [], "missed": [e["effect"] for e in entry["effects"]]}
+    acc = res["effects"]
+    declared = [a for a in acc if _is_declared(a, entry["declared_terms"])]
+    new = [a for a in acc if not _is_declared(a, entry["declared_terms"])]
+    structure = bool(res.get("remaining", {}).get("structure"))
+    truth = [] if entry["class"] in ("null", "outside") else entry["effects"]
+    matches, used = [], set()
+    for e in truth:
+        labels = [e, *e.get("also_accept", [])]
+        hit = None
+        for i, a in enumerate(new):
+            if i in used:
+                continue
+            lab = next((lb for lb in labels if _label_match(a, lb)), None)
+            if lab is not None:
+                hit = (i, a, lab)
+                break
+        if hit is not None:
+            used.add(hit[0])
+            matches.append({"truth": e["effect"], "accepted": f"{hit[1]['effect']} on "
+                            f"{hit[1]['target']}",
+                            "errors": _param_errors(hit[1], hit[2].get("expected", {}),
+                                                    res.get("final_fit"))})
+    extra = [a for i, a in enumerate(new) if i not in used]
+    missed = [e["effect"] for e in truth if e["effect"] not in {m["truth"] for m in matches}]
+    if not new:
+        verdict = "nothing+structure" if structure else "nothing"
+    elif not missed and not extra and truth:
+        verdict = "right"
+    elif matches:
+        verdict = "partial"
+    else:
+        verdict = "wrong"
+    cls = entry["class"]
+    if cls == "null":
+        right = not new
+    elif cls == "outside":
+        right = not new and structure
+    else:
+        right = verdict == "right"
+    if right:
+        verdict = "right"
+    return {"verdict": verdict, "right": right, "matches": matches,
+            "extra": [f"{a['effect']} on {a['target']}" for a in extra],
+            "declared": [f"{a['effect']} on {a['target']}" for a in declared],
+            "missed": missed, "structure": structure}
+
+
+# ----------------------------------------------------------------------- reporting
+
+def _fmt_effects(res: dict) -> str:
+    out = []
+    for a in res.get("effects", []):
+        ps = ", ".join(f"{k.split('_')[-1] if k != 'order' else 'order'}={v:.4g}"
+                       for k, v in a["parameters"].items() if isinstance(v, (int, float)))
+        out.append(f"{a['effect']}@{a['target']}({ps})")
+    return "; ".join(out) or "-"
+
+
+def _truth_effects(entry: dict) -> str:
+    out = []
+    for e in entry["effects"]:
+        ps = ", ".join(f"{k}={v:.4g}" for k, v in e["parameters"].items()
+                       if isinstance(v, (int, float)))
+        out.append(f"{e['effect']}" + (f"@{e['target']}" if e.get("target") else "") +
+                   (f"({ps})" if ps else ""))
+    return "; ".join(out) or "-"
+
+
+def report(entries: list[dict], title: str) -> tuple[int, int]:
+    print(f"\n=== {title}: {len(entries)} records ===")
+    rows = []
+    n_right = n_done = 0
+    confusion = {c: {v: 0 for v in VERDICTS} for c in CLASSES}
+    per_effect: dict[str, dict[str, int]] = {}
+    for e in entries:
+        path = RESULTS / f"{e['id']}.json"
+        res = json.loads(path.read_text()) if path.exists() else None
+        if res is None:
+            rows.append((e, None, None))
+            continue
+        sc = score(e, res)
+        rows.append((e, res, sc))
+        n_done += 1
+        n_right += sc["right"]
+        confusion[e["class"]][sc["verdict"]] += 1
+        if e["class"] in ("catalog", "two"):
+            for t in e["effects"]:
+                d = per_effect.setdefault(t["effect"], {"found": 0, "missed": 0})
+                d["found" if t["effect"] in {m["truth"] for m in sc["matches"]} else "missed"] += 1
+        for x in sc["extra"]:
+            d = per_effect.setdefault("(false) " + x.split(" on ")[0], {"found": 0, "missed": 0})
+            d["found"] += 1
+    for e, res, sc in rows:
+        head = f"{e['id']} [{e['class']}, {e['motor']}-{e['regime']}]"
+        if res is None:
+            print(f"{head}: not run")
+            continue
+        ok = "RIGHT" if sc["right"] else "wrong"
+        print(f"{head}: {ok} ({sc['verdict']})  {res.get('wall_s', 0):.0f} s")
+        print(f"    truth   : {_truth_effects(e)}   noise: {e['noise_text']}")
+        if res.get("status") != "ok":
+            print(f"    FAILED  : {res.get('status')}: {res.get('error', '')[:300]}")
+            continue
+        print(f"    accepted: {_fmt_effects(res)}  (values when accepted)")
+        for m in sc["matches"]:
+            errs = ", ".join(f"{k} {v:+.1%}" if k != "phase_rad" else f"phase {v:+.3f} rad"
+                             for k, v in m["errors"].items())
+            print(f"      {m['truth']} <- {m['accepted']}: {errs or 'no comparable parameter'}"
+                  " (final fit vs truth)")
+        if sc["declared"]:
+            print(f"    declared-term corrections (not scored): {', '.join(sc['declared'])}")
+        nf = res.get("noise_floor", {}).get("after", {})
+        rem = res.get("remaining", {})
+        print(f"    error {res['error_before']:.4g} -> {res['error_after']:.4g}; noise floor "
+              + ", ".join(f"{p} {v:.3g}" for p, v in nf.items() if v is not None)
+              + f"; structure remains: {bool(rem.get('structure'))}"
+              + (f" ({rem.get('note')})" if rem.get("structure") else ""))
+    print(f"\nconfusion ({title}): truth class x verdict")
+    print("  " + f"{'class':10s}" + "".join(f"{v:>19s}" for v in VERDICTS))
+    for c in CLASSES:
+        if sum(confusion[c].values()):
+            print("  " + f"{c:10s}" + "".join(f"{confusion[c][v]:19d}" for v in VERDICTS))
+    if per_effect:
+        print(f"per effect ({title}): found / missed (catalog and two-effect records); "
+              f"'(false)' = accepted but not in the truth")
+        for k, d in sorted(per_effect.items()):
+            print(f"  {k:28s} found {d['found']}, missed {d['missed']}")
+    print(f"{title}: {n_right} right of {n_done} run ({len(entries) - n_done} not run)")
+    return n_right, n_done
+
+
+# ------------------------------------------------------------------------- parent
+
+def run_one(entry: dict, timeout: float, circuitsim_dir: str | None, niceness: int) -> None:
+    csv = ROOT / entry["csv"]
+    if not csv.exists():
+        subprocess.run([sys.executable, str(HERE / "make_records.py"), "--only", entry["id"]],
+                       check=True, stdout=subprocess.DEVNULL)
+    env = dict(os.environ)
+    if circuitsim_dir:
+        env["PYTHONPATH"] = circuitsim_dir + os.pathsep + env.get("PYTHONPATH", "")
+    env.setdefault("CIRCUITSIM_CACHE", str(Path(tempfile.gettempdir()) / "diagbench-cache"))
+    cmd = [sys.executable, str(Path(__file__).resolve()), "--child", entry["id"]]
+    if niceness:
+        cmd = ["nice", "-n", str(niceness), *cmd]
+    t0 = time.perf_counter()
+    proc = subprocess.Popen(cmd, env=env, start_new_session=True)
+    try:
+        proc.wait(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        os.killpg(proc.pid, 9)
+        proc.wait()
+        RESULTS.mkdir(exist_ok=True)
+        (RESULTS / f"{entry['id']}.json").write_text(json.dumps(
+            {"id": entry["id"], "status": "timeout", "error": f"no result in {timeout:g} s",
+             "wall_s": time.perf_counter() - t0}, indent=1))
+        return
+    if not (RESULTS / f"{entry['id']}.json").exists():
+        (RESULTS / f"{entry['id']}.json").write_text(json.dumps(
+            {"id": entry["id"], "status": "crash", "error": f"child exit {proc.returncode}",
+             "wall_s": time.perf_counter() - t0}, indent=1))
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--split", choices=("tune", "heldout", "all"), default="tune")
+    ap.add_argument("--only", default="", help="record ids, comma-separated")
+    ap.add_argument("--timeout", type=float, default=1200.0, help="per record [s]")
+    ap.add_argument("--rerun", action="store_true", help="ignore stored results")
+    ap.add_argument("--score-only", action="store_true", help="print from results/ only")
+    ap.add_argument("--circuitsim", help="a circuitsim checkout to import (PYTHONPATH)")
+    ap.add_argument("--nice", type=int, default=10, help="niceness of the child (0: none)")
+    ap.add_argument("--child", help=argparse.SUPPRESS)
+    args = ap.parse_args()
+    if args.child:
+        return child(args.child)
+    truth = load_truth()
+    only = [s.strip() for s in args.only.split(",") if s.strip()]
+    if only:
+        sel = [e for e in truth if e["id"] in only]
+    else:
+        sel = [e for e in truth if args.split == "all" or e["split"] == args.split]
+    if not args.score_only:
+        for e in sel:
+            path = RESULTS / f"{e['id']}.json"
+            if path.exists() and not args.rerun:
+                continue
+            print(f"diagnosing {e['id']} ...", flush=True)
+            run_one(e, args.timeout, args.circuitsim, args.nice)
+    totals = [0, 0]
+    for split in ("tune", "heldout"):
+        part = [e for e in sel if e["split"] == split]
+        if part:
+            r, n = report(part, split)
+            totals[0] += r
+            totals[1] += n
+    print(f"\nTOTAL: {totals[0]} right of {totals[1]} run, {len(sel)} selected")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
