@@ -26,14 +26,17 @@ def _compile(net):
 
 def test_catalog_covers_the_interface_ids():
     net = cs.load(CASE1)
-    found = {c.effect for c in effects.candidates(net, {"rotor": [8]})}
+    found = {c.effect for c in effects.candidates(net, {"rotor": [1, 8]}, ["i_total"])}
+    # a breakaway peak refines a friction the netlist has: proposed once there is one
+    coulomb = next(c for c in effects.candidates(net) if c.effect == "coulomb-friction")
+    found |= {c.effect for c in effects.candidates(build(coulomb.apply(net.raw)))}
     assert found == set(effects.CATALOG_IDS)
 
 
 def test_every_patch_is_exact_at_its_null_value():
     net = cs.load(CASE1)
     base = _compile(net).simulate(stop=0.02, rtol=1e-10, atol=1e-12)
-    for c in effects.candidates(net, {"rotor": [2]}):
+    for c in effects.candidates(net, {"rotor": [1, 2]}, ["i_total"]):
         res = _compile(build(c.apply(net.raw))).simulate(stop=0.02, rtol=1e-10, atol=1e-12)
         assert res.success, c.key
         np.testing.assert_allclose(res["i_total"], base["i_total"], atol=1e-7, err_msg=c.key)
@@ -55,3 +58,53 @@ def test_coulomb_friction_patch_lowers_the_speed_as_the_closed_form_says(tmp_pat
     cand.apply(net.raw).dump(out, "base + Coulomb friction")
     again = _compile(cs.load(out))
     assert again.key == model.key
+
+
+def _op_probe(net, effect, values, probe="speed", probes=("i_total", "speed")):
+    cand = next(c for c in effects.candidates(net, {"rotor": [1]}, list(probes))
+                if c.effect == effect and (c.target in (probe, "rotor", "M")))
+    model = _compile(build(cand.apply(net.raw)))
+    named = dict(zip(cand.free, values, strict=True))
+    return probe_values(model, operating_point(model, named), named)
+
+
+def test_sensor_patches_read_through_their_law():
+    """A gain error g reads (1 + g) x; an offset o reads x + o; the circuit is untouched."""
+    net = cs.load(NETLISTS / "kim2024" / "base.yaml")
+    model = _compile(net)
+    base = probe_values(model, operating_point(model))
+    gain = _op_probe(net, "sensor-gain", [0.05], "speed")
+    offset = _op_probe(net, "sensor-offset", [0.2], "i_total")
+    assert gain["speed"] == pytest.approx(1.05 * base["speed"], rel=1e-9)
+    assert gain["i_total"] == pytest.approx(base["i_total"], rel=1e-9)
+    assert offset["i_total"] == pytest.approx(base["i_total"] + 0.2, rel=1e-9)
+
+
+def test_stribeck_patch_is_coulomb_friction_far_above_its_speed():
+    """At 650 rad/s the breakaway peak (below ~1 rad/s) has decayed: the steady speed is the
+    Coulomb closed form with tau_c = c, whatever the peak s."""
+    net = cs.load(NETLISTS / "kim2024" / "base.yaml")
+    k_t, k_e, R, B = 0.14, 0.1017 / (2 * np.pi), 1.1, 2.95e-4
+    w = (k_t * (12 - 1.151e-4) - R * 0.01) / (k_t * k_e + B * R)
+    coulomb = next(c for c in effects.candidates(net) if c.effect == "coulomb-friction")
+    with_friction = build(coulomb.apply(net.raw))
+    stribeck = next(c for c in effects.candidates(with_friction)
+                    if c.effect == "stribeck-friction")
+    model = _compile(build(stribeck.apply(with_friction.raw)))
+    values = {**dict.fromkeys(coulomb.free, 0.01), **dict.fromkeys(stribeck.free, 0.02)}
+    speed = probe_values(model, operating_point(model, values), values)["speed"]
+    assert speed == pytest.approx(w, rel=1e-6)
+    assert stribeck.key not in {c.key for c in effects.candidates(net)}
+
+
+def test_effect_parameters_have_physical_bounds():
+    """Resistances, friction and drops are never negative; a saturation ratio is in (0, 1]."""
+    net = cs.load(CASE1)
+    for c in effects.candidates(net, {"rotor": [8]}, ["i_total"]):
+        for name, (null, lo, hi) in c.free.items():
+            assert lo <= null <= hi, c.key
+            if c.effect in ("series-resistance", "source-resistance", "brush-drop",
+                            "coulomb-friction", "viscous-friction", "stribeck-friction"):
+                assert lo == 0.0, c.key
+            if c.effect == "inductor-saturation" and name.endswith("ratio"):
+                assert 0.0 < lo and hi == 1.0, c.key

@@ -105,6 +105,13 @@ def _converters(net: Netlist) -> list[tuple[str, str]]:
     return out
 
 
+def _has_friction(net: Netlist, node: str) -> bool:
+    """A Coulomb friction acts on the node already (declared, or accepted before): a
+    breakaway peak refines it."""
+    return any(c.type == "friction" and node in dict(c.ports).values()
+               for c in net.components)
+
+
 def _mechanical_nodes(net: Netlist) -> list[tuple[str, str]]:
     return [(n, d) for n, (d, _) in net.nodes.items()
             if d in ("rotational", "translational") and n != "fixed"]
@@ -190,14 +197,15 @@ def _mechanical(net: Netlist, orders: Mapping[str, list[int]]) -> list[Candidate
                 ("shaft" if rot else "flange"): n, ("T" if rot else "F"): p}),
             steps={p: 1e-4 if rot else 1e-1}))
         if rot:
-            c_, s_ = _pname("stribeck-friction", node, "c"), _pname("stribeck-friction", node, "s")
-            out.append(Candidate(
-                "stribeck-friction", node, {c_: (0.0, 0.0, 1e4), s_: (0.0, 0.0, 1e4)}, {},
-                f"friction with a breakaway (Stribeck) peak at low speed on {node}",
-                lambda r, n=node, c_=c_, s_=s_: _add(r, {
-                    "name": f"SF_{n}", "type": "friction", "shaft": n, "tau_c": c_,
-                    "tau_brk": f"{c_} + {s_}", "w_brk": STRIBECK_SPEED}),
-                steps={c_: 1e-4, s_: 1e-4}))
+            if _has_friction(net, node):
+                s_ = _pname("stribeck-friction", node, "s")
+                out.append(Candidate(
+                    "stribeck-friction", node, {s_: (0.0, 0.0, 1e4)}, {},
+                    f"a breakaway (Stribeck) peak of the friction on {node} at low speed",
+                    lambda r, n=node, s_=s_: _add(r, {
+                        "name": f"SF_{n}", "type": "friction", "shaft": n, "tau_c": 0.0,
+                        "tau_brk": s_, "w_brk": STRIBECK_SPEED}),
+                    steps={s_: 1e-4}))
             for k in orders.get(node, []):
                 a = _pname("cogging", f"{node}_{k}", "a")
                 b = _pname("cogging", f"{node}_{k}", "b")

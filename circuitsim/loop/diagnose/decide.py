@@ -60,7 +60,10 @@ def refit_trial(setup: Setup, state: ModelState, candidates: Sequence[Any],
     """Refit the candidates (with everything free so far) from the screen's starts; a refit
     that ends worse than it began is retried with the new parameters alone first (the
     angle-locked phase of a harmonic finds its basin), then all together."""
-    free = [*state.free, *(n for c in candidates for n in c.free)]
+    # the candidate is scored with only its own parameters and the declared ones free: the
+    # earlier effects' parameters stay where the accepted model put them, so a candidate is
+    # never credited with a better fit of what is already there
+    free = [*setup.declared, *(n for c in candidates for n in c.free)]
     params = {**state.params, **starts}
     bounds = {**state.bounds, **{n: (lo, hi) for c in candidates
                                  for n, (_, lo, hi) in c.free.items()}}

@@ -21,6 +21,7 @@ The stages, each a function of plain objects (``context``):
 
 from __future__ import annotations
 
+import itertools
 import math
 import time
 from collections.abc import Mapping, Sequence
@@ -41,11 +42,13 @@ from circuitsim.loop.diagnose.context import (
 from circuitsim.loop.diagnose.decide import BIC_MARGIN, Trial, judge, refit_trial
 from circuitsim.loop.diagnose.describe import remaining
 from circuitsim.loop.diagnose.netlist_out import _with_values
+from circuitsim.loop.diagnose.noise import delta_bic, whiteners_of
 from circuitsim.loop.diagnose.residual import _orders, analyse, noise_sigma
 from circuitsim.loop.diagnose.result import Accepted, Diagnosis, DiagnosisError
 from circuitsim.loop.diagnose.screen import Screen, projections, propose, screen
 
 SCREEN_TOP = 3  # candidates refitted with full simulation per round
+MAX_COMBINATIONS = 10  # joint swaps tried after an acceptance
 
 
 def diagnose(netlist, record, free: Sequence[str] = (), *, probes: Sequence[str] | None = None,
@@ -131,7 +134,7 @@ def search(setup: Setup, state: ModelState, screen_top: int, clock: dict[str, fl
         if winner is None:
             break
         state = _accept(setup, state, winner, log)
-        state = _backward(setup, state, log)
+        state = _backward(setup, _swap(setup, state, log), log)
     return state, log
 
 
@@ -208,6 +211,7 @@ def _refit_round(setup: Setup, state: ModelState, screens: list[Screen],
         return None
     passed.sort(key=lambda t: t[0].delta_bic)
     best = passed[0]
+    log["alternatives"] = [t for t, _ in passed[1:3] if len(t.candidates) == 1]
     for t, _ in trials:
         if t is not best[0] and t.delta_bic - best[0].delta_bic < BIC_MARGIN and t.passed:
             log["indistinct"].append(
@@ -236,6 +240,7 @@ def _accept(setup: Setup, state: ModelState, winner: tuple[Trial, bool],
     for c in trial.candidates:
         raw = c.apply(raw)
         log["trials"][c.key] = trial
+        log.setdefault("rounds", {})[c.key] = list(log.get("alternatives", []))
     model = compile_raw(raw)
     bounds = {**state.bounds, **{n: (lo, hi) for c in trial.candidates
                                  for n, (_, lo, hi) in c.free.items()}}
@@ -246,6 +251,81 @@ def _accept(setup: Setup, state: ModelState, winner: tuple[Trial, bool],
     setup.log(f"accepted {trial.key}" + (" (a correction of a declared term)"
                                          if correction else "") + f": error {fit.error:.4g}")
     return ModelState(raw, model, free, dict(fit.params), fit, bounds, chosen, state.base_raw)
+
+
+def _swap(setup: Setup, state: ModelState, log: dict[str, Any]) -> ModelState:
+    """Forward selection is greedy: an effect chosen while another was still missing may
+    have been a stand-in for a near-equal alternative of its round (viscous friction for
+    Coulomb friction while a cogging ripple blurred the record), and the next choice then
+    fits around the stand-in. With every effect in place, each combination of the rounds'
+    choices and their near-equal alternatives is refitted (at most ``MAX_COMBINATIONS``), and
+    the best replaces the model when it lowers the BIC by more than the margin."""
+    options = [[choice, *(Choice(t.candidates[0], choice.correction)
+                          for t in log.get("rounds", {}).get(choice.candidate.key, []))]
+               for choice in state.chosen]
+    combos = list(itertools.product(*options))[1:]  # the first is the model as it stands
+    if not combos or len(combos) >= MAX_COMBINATIONS:
+        return state
+    best, best_w = state, None
+    gains: dict[str, float] = {}
+    for combo in combos:
+        trial = _refit_choices(setup, state, list(combo), log)
+        if trial is None:
+            continue
+        w = whiteners_of(trial.fit.residuals, setup.probes)
+        gain = delta_bic(trial.whitened(setup, w), state.whitened(setup, w), setup.n, 0,
+                         setup.probes)
+        gains[" + ".join(c.candidate.key for c in combo)] = gain
+        setup.log("  swap " + " + ".join(c.candidate.key for c in combo) + f": ΔBIC {gain:.1f}")
+        ref = best.whitened(setup, w)
+        if delta_bic(trial.whitened(setup, w), ref, setup.n, 0, setup.probes) < (
+                -BIC_MARGIN if best is state else 0.0):
+            best, best_w = trial, w
+    if best is state or best_w is None:
+        return state
+    name = " + ".join(c.candidate.key for c in best.chosen)
+    setup.log(f"revised: {name} replaces " + " + ".join(c.candidate.key for c in state.chosen))
+    for other, g in gains.items():
+        if other != name and g - gains[name] < BIC_MARGIN:
+            log["indistinct"].append(f"{name} and {other} explain this record almost equally "
+                                     f"well (ΔBIC {gains[name]:.1f} vs {g:.1f}): the data "
+                                     f"cannot tell them apart")
+    for old in state.chosen:
+        if old.candidate.key not in {c.candidate.key for c in best.chosen}:
+            log["rejected"].append({"effect": old.candidate.effect,
+                                    "target": old.candidate.target,
+                                    "reason": "replaced by a near-equal alternative once the "
+                                              "later effects were in place"})
+    for c in best.chosen:
+        if c.candidate.key not in log["trials"]:
+            log["trials"][c.candidate.key] = next(
+                a for alts in log["rounds"].values() for a in alts
+                if a.candidates[0].key == c.candidate.key)
+    best.model = compile_raw(best.raw)
+    return best
+
+
+def _refit_choices(setup: Setup, state: ModelState, chosen: list[Choice],
+                   log: dict[str, Any]) -> ModelState | None:
+    """The declared model with ``chosen`` patched in, refitted from the values known."""
+    raw = _base_raw(state, chosen)
+    free = [*setup.declared, *(n for c in chosen for n in c.candidate.free)]
+    patched = {n for c in state.chosen for n in c.candidate.free}
+    params = {k: v for k, v in state.params.items() if k not in patched}
+    for c in chosen:
+        t = log["trials"].get(c.candidate.key) or next(
+            (a for alts in log.get("rounds", {}).values() for a in alts
+             if a.candidates[0].key == c.candidate.key), None)
+        if t is not None:
+            params.update({n: t.fit.params[n] for n in c.candidate.free})
+    bounds = {**state.bounds, **{n: (lo, hi) for c in chosen
+                                 for n, (_, lo, hi) in c.candidate.free.items()}}
+    try:
+        fit = refit(setup, compile_raw(raw), free, params, bounds, nfev=20)
+    except CircuitsimError as exc:
+        setup.log(f"  swap refit failed: {exc}")
+        return None
+    return ModelState(raw, None, free, dict(fit.params), fit, bounds, chosen, state.base_raw)
 
 
 def _backward(setup: Setup, state: ModelState, log: dict[str, Any]) -> ModelState:
@@ -285,6 +365,22 @@ def _base_raw(state: ModelState, chosen: list[Choice]):
 
 # ------------------------------------------------------------------------------- report
 
+def _merge_refinements(accepted: list[Accepted]) -> list[Accepted]:
+    """A breakaway peak refines the Coulomb friction of its node: together they are one
+    effect, Stribeck friction, with the parameters of both."""
+    out = list(accepted)
+    for peak in [a for a in out if a.effect == "stribeck-friction"]:
+        base = next((a for a in out if a.effect == "coulomb-friction" and
+                     a.target == peak.target), None)
+        if base is None:
+            continue
+        out.remove(base)
+        peak.parameters = {**base.parameters, **peak.parameters}
+        peak.stderr = {**base.stderr, **peak.stderr}
+        peak.evidence = {**peak.evidence, "refines": base.evidence}
+    return out
+
+
 def report(setup: Setup, state0: ModelState, state: ModelState, log: dict[str, Any],
            clock: dict[str, float]) -> Diagnosis:
     """Stage 7: the Diagnosis, with the remaining structure described (stage 6)."""
@@ -305,6 +401,7 @@ def report(setup: Setup, state0: ModelState, state: ModelState, log: dict[str, A
              "sse_after": trial.sse_after if trial else None,
              "correction_of_declared_term": choice.correction})
         (corrections if choice.correction else accepted).append(entry)
+    accepted = _merge_refinements(accepted)
     rest = remaining(setup, state)
     analysis0 = analyse(state0.model, setup.record, fit0, setup.probes)
     analysis1 = analyse(state.model, setup.record, final, setup.probes)
