@@ -179,10 +179,14 @@ def _param_errors(acc: dict, expected: dict, final: dict | None = None) -> dict[
                   final[k].get("estimate") is not None else v)
               for k, v in acc.get("parameters", {}).items()}
 
+    # the catalog's parameter suffixes for the truth's physical names
+    aliases = {"gain": "g", "offset": "o", "T_coulomb_Nm": "c", "T_breakaway_Nm": "s"}
+
     def find(suffix):
-        for k, v in params.items():
-            if k == suffix or k.endswith("_" + suffix):
-                return v
+        for name in (suffix, aliases.get(suffix)):
+            for k, v in params.items():
+                if name and (k == name or k.endswith("_" + name)):
+                    return v
         return None
 
     out = {}

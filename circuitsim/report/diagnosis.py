@@ -109,7 +109,9 @@ def write_html(diag: Diagnosis, path: str, title: str = "circuitsim diagnosis") 
 
     def evidence(a: Accepted) -> str:
         e = a.evidence
-        return f"{e['delta_bic']:.1f}" if "delta_bic" in e else f"{e.get('chi2_after', 0):.3g}"
+        if e.get("delta_bic") is not None:
+            return f"{e['delta_bic']:.1f}"
+        return f"{e['chi2_after']:.3g}" if e.get("chi2_after") is not None else "n/a"
 
     rows = "".join(
         f"<tr><td>{i + 1}</td><td>{html.escape(a.effect)}</td><td>{html.escape(a.target)}</td>"
@@ -125,6 +127,55 @@ def write_html(diag: Diagnosis, path: str, title: str = "circuitsim diagnosis") 
 <table border="1"><tr><th>#</th><th>effect</th><th>target</th><th>parameters</th><th>stderr</th>
 <th>error after</th><th>{crit}</th></tr>{rows}</table>
 <p>{'<br>'.join(html.escape(s) for s in diag.indistinct)}</p>
+{_corrections(diag)}{_final_fit(diag)}{_remaining(diag)}
 {plots}
 </body></html>"""
     atomic_write(path, body, make_dirs=False)
+
+
+def _corrections(diag: Diagnosis) -> str:
+    if not diag.corrections:
+        return ""
+    rows = "".join(
+        f"<tr><td>{html.escape(a.effect)}</td><td>{html.escape(a.target)}</td>"
+        f"<td>{html.escape(', '.join(f'{k} = {v:.5g}' for k, v in a.parameters.items()))}"
+        f"</td></tr>" for a in diag.corrections)
+    return ("<h2>Corrections of declared terms (not new causes)</h2><table border=\"1\">"
+            "<tr><th>term</th><th>on</th><th>correction</th></tr>" + rows + "</table>")
+
+
+def _final_fit(diag: Diagnosis) -> str:
+    final = diag.final_parameters()
+    if not final:
+        return ""
+
+    def num(v: float | None, fmt: str) -> str:
+        return "n/a" if v is None else format(v, fmt)
+
+    rows = "".join(
+        f"<tr><td>{html.escape(n)}</td><td>{num(v['before'], '.6g')}</td>"
+        f"<td>{num(v['estimate'], '.6g')}</td><td>{num(v['stderr'], '.2g')}</td></tr>"
+        for n, v in final.items())
+    return ("<h2>Final fit (all free parameters together, SI)</h2><table border=\"1\">"
+            "<tr><th>parameter</th><th>declared model</th><th>estimate</th><th>stderr</th>"
+            "</tr>" + rows + "</table>")
+
+
+def _remaining(diag: Diagnosis) -> str:
+    rest = diag.remaining or {}
+    probes = rest.get("probes") or {}
+    if not isinstance(probes, dict) or not probes:
+        return f"<h2>What remains</h2><p>{html.escape(str(rest.get('note', '')))}</p>"
+    rows = []
+    for p, e in probes.items():
+        lines = "; ".join(
+            (f"order {ln['order']['order']:g} of {ln['order']['shaft']}" if "order" in ln
+             else f"{ln['frequency']:.4g} Hz") + f" ({ln['share']:.0%})" for ln in e["lines"])
+        when = ", ".join(f"{a:.3g}-{b:.3g} s" for a, b in e["timing"]["strongest"])
+        rows.append(f"<tr><td>{html.escape(p)}</td><td>{e['structured_share']:.1%}</td>"
+                    f"<td>{html.escape(e['timing']['kind'])}</td><td>{html.escape(when)}</td>"
+                    f"<td>{html.escape(lines)}</td></tr>")
+    return ("<h2>What remains</h2><p>" + html.escape(str(rest.get("note", ""))) +
+            "</p><table border=\"1\"><tr><th>probe</th><th>structure share</th><th>kind</th>"
+            "<th>strongest</th><th>lines (share of the structure)</th></tr>" + "".join(rows) +
+            "</table>")
