@@ -11,6 +11,7 @@ import difflib
 import hashlib
 import json
 import math
+import re
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from functools import lru_cache
@@ -367,7 +368,32 @@ def _carries_units(node: ex.Node, dims: Mapping[str, Dim | None]) -> bool:
     return any(_carries_units(a, dims) for a in node.args)
 
 
+# Names a netlist may not give a parameter: each already means something in an expression, and
+# letting the user's value win in one place and the built-in meaning in another would give a
+# silent wrong answer.
+RESERVED_PARAMS = {"pi": "the constant 3.14159... in every expression",
+                   "t": "the simulated time in behavioural expressions",
+                   "time": "the time column of every output table"}
+_IDENT = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
+# characters a node name may not hold: they would split or shift a CSV header, or make the
+# name impossible to write in a probe
+_BAD_NODE_CHARS = re.compile(r"[,\"'\s;=]")
+
+
+def _check_param_name(name: str, loc: SourceLoc) -> None:
+    if name in RESERVED_PARAMS:
+        raise ParameterError(f"parameter name '{name}' is reserved: it is "
+                             f"{RESERVED_PARAMS[name]}; rename the parameter (e.g. "
+                             f"'{name}_')", loc)
+    if not _IDENT.fullmatch(name):
+        raise ParameterError(f"parameter name '{name}' is not a plain name (letters, digits, "
+                             f"'_'; no dots): a dotted name reads as a circuit quantity such as "
+                             f"'R1.v'; rename it", loc)
+
+
 def _order_params(raw: _Raw) -> dict[str, GlobalParam]:
+    for k, (_, loc) in raw.params.items():
+        _check_param_name(k, loc)
     nodes = {k: _parse_value(v, loc, f"parameter '{k}'") for k, (v, loc) in raw.params.items()}
     order: list[str] = []
     state: dict[str, int] = {}
@@ -667,12 +693,40 @@ def build(raw: RawNetlist) -> Netlist:
         comps.append(b.component(entry, loc, file))
     if not comps:
         raise NetlistError("the netlist has no components", SourceLoc(str(path), 1))
+    _check_node_names(nodes, seen)
+    probes = _probes(raw)
+    analysis = _analysis(raw, b)
+    tables = [t for c in comps for t in c.tables]
+    if tables:
+        comps = _index_tables(comps)
+    return Netlist(str(path), raw.title, params, tuple(comps), probes, analysis, nodes, raw)
+
+
+def _check_node_names(nodes: Mapping[str, tuple[str, SourceLoc]],
+                      comps: Mapping[str, SourceLoc]) -> None:
+    """Refuse node names that would read as something else in a probe or a CSV header."""
     for n, (_, loc) in nodes.items():
-        if n in seen:
+        if n in comps:
             raise NetlistError(f"'{n}' names both a node and a component; rename one",
                                loc, n)
+        head = n.split(".", 1)[0]
+        if "." in n and head in comps:
+            # 'R1.n.v' would mean both this node's voltage and the voltage at R1's port n
+            raise NetlistError(f"node name '{n}' reads as a port of component '{head}' "
+                               f"(probes write ports as COMPONENT.PORT); rename the node, e.g. "
+                               f"'{n.replace('.', '_')}'", loc)
+        if _BAD_NODE_CHARS.search(n) or not n:
+            raise NetlistError(f"node name {n!r} holds a space, comma, quote, ';' or '=': it "
+                               f"could not be named in a probe or a CSV header; use letters, "
+                               f"digits and '_'", loc)
+
+
+def _probes(raw: _Raw) -> dict[str, Probe]:
     probes = {}
     for name, (text, loc) in raw.probes.items():
+        if name == "time":
+            raise NetlistError("probe name 'time' is reserved for the time column of the "
+                               "output; rename the probe (e.g. 't_probe')", loc)
         try:
             node = ex.parse(str(text), allow_unit=False)
         except ex.ExprError as exc:
@@ -682,11 +736,7 @@ def build(raw: RawNetlist) -> Netlist:
         except NetlistError as exc:
             raise NetlistError(f"probe '{name}': {exc.bare}", loc) from None
         probes[name] = Probe(name, node, str(text), loc)
-    analysis = _analysis(raw, b)
-    tables = [t for c in comps for t in c.tables]
-    if tables:
-        comps = _index_tables(comps)
-    return Netlist(str(path), raw.title, params, tuple(comps), probes, analysis, nodes, raw)
+    return probes
 
 
 def _free_symbol(name: str):
