@@ -10,13 +10,18 @@ file, row (the file's line) and column.
 from __future__ import annotations
 
 import csv
+import errno
 import math
 import os
+import shutil
+import stat
 import tempfile
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from pathlib import Path
 
 import numpy as np
+
+from circuitsim.errors import CircuitsimError
 
 
 def _umask() -> int:
@@ -26,17 +31,99 @@ def _umask() -> int:
     return mask
 
 
+class OutputError(CircuitsimError, OSError):
+    """An output cannot be written (disk full, read-only or missing folder, a folder named as
+    the file) or would overwrite an input. Exit code 3; 2 when the command line named it wrong.
+
+    It is also an ``OSError``, so code that already handles I/O errors keeps doing so.
+    """
+
+    exit_code = 3
+
+
+def check_output(path: str | os.PathLike, inputs: Iterable[str | os.PathLike] = (),
+                 what: str = "output") -> None:
+    """Refuse, before any work, an output that cannot be written or that is one of ``inputs``;
+    create its missing folders (every output does: a run never fails on a new folder).
+
+    Raises OutputError (exit code 2: the command line is wrong) naming the file and the fix.
+    """
+    p = os.fspath(path)
+    real = os.path.realpath(p)
+    for src in inputs:
+        if os.path.exists(src) and os.path.exists(real) and os.path.samefile(real, src):
+            raise _usage(f"{what} '{p}' is the input '{os.fspath(src)}': writing it would "
+                         f"destroy the input; choose another file name")
+    if os.path.isdir(real):
+        raise _usage(f"{what} '{p}' is a folder; name a file inside it")
+    if os.path.exists(real) and not _is_regular(real):
+        return  # a device or pipe (/dev/null, a FIFO) is written through
+    folder = os.path.dirname(real) or "."
+    existing = folder
+    while not os.path.exists(existing):
+        existing = os.path.dirname(existing)
+    if not os.path.isdir(existing):
+        raise _usage(f"{what} '{p}': '{existing}' is a file, not a folder")
+    if not os.access(existing, os.W_OK | os.X_OK):
+        raise _usage(f"{what} '{p}' is in a folder you cannot write ({existing}); write "
+                     f"elsewhere")
+    try:
+        os.makedirs(folder, exist_ok=True)
+    except OSError as exc:
+        raise _usage(f"{what} '{p}': cannot create the folder {folder}: {exc.strerror}") \
+            from None
+
+
+def _usage(message: str) -> OutputError:
+    err = OutputError(message)
+    err.exit_code = 2
+    return err
+
+
+def _is_regular(path: str) -> bool:
+    try:
+        return stat.S_ISREG(os.stat(path).st_mode)
+    except OSError:
+        return False
+
+
 def atomic_write(path: str | os.PathLike, write: Callable[[str], None] | str | bytes,
                  *, make_dirs: bool = True) -> None:
     """Write ``path`` whole or not at all, with the mode the umask gives a new file.
 
     ``write`` is either the content (text or bytes) or a function that writes the content to
-    the temporary path it is given (matplotlib's ``savefig``, numpy's ``savetxt``).
+    the temporary path it is given (matplotlib's ``savefig``, numpy's ``savetxt``). A symbolic
+    link is written through (the link stays, its target is replaced whole); a device or a pipe
+    (``/dev/null``) is written directly. Raises OutputError (also an ``OSError``) when the
+    file cannot be written; no temporary file is left behind.
     """
-    target = os.path.abspath(os.fspath(path))
+    # realpath: replace the file a link points at, never the link itself
+    target = os.path.realpath(os.fspath(path))
     folder = os.path.dirname(target) or "."
-    if make_dirs:
-        os.makedirs(folder, exist_ok=True)
+    try:
+        if os.path.exists(target) and not _is_regular(target):
+            if os.path.isdir(target):
+                raise IsADirectoryError(errno.EISDIR, "is a folder", target)
+            _write_through(target, write)
+            return
+        if make_dirs:
+            os.makedirs(folder, exist_ok=True)
+        _replace(target, folder, write)
+    except OutputError:
+        raise
+    except OSError as exc:
+        raise OutputError(f"cannot write '{os.fspath(path)}': {exc.strerror or exc}"
+                          f"{_HINTS.get(exc.errno or 0, '')}") from None
+
+
+_HINTS = {errno.ENOSPC: " (the disk is full; free space and run again)",
+          errno.EDQUOT: " (the disk quota is exhausted)",
+          errno.EROFS: " (the file system is read-only; write elsewhere)",
+          errno.EACCES: " (no permission; write elsewhere)",
+          errno.ENOENT: " (the folder does not exist; create it first)"}
+
+
+def _replace(target: str, folder: str, write: Callable[[str], None] | str | bytes) -> None:
     fd, tmp = tempfile.mkstemp(dir=folder, prefix=".circuitsim-", suffix=Path(target).suffix)
     try:
         if callable(write):
@@ -49,8 +136,23 @@ def atomic_write(path: str | os.PathLike, write: Callable[[str], None] | str | b
         os.chmod(tmp, 0o666 & ~_umask())
         os.replace(tmp, target)
     finally:
+        # also on KeyboardInterrupt and SystemExit (the CLI turns SIGTERM into one)
         if os.path.exists(tmp):
             os.unlink(tmp)
+
+
+def _write_through(target: str, write: Callable[[str], None] | str | bytes) -> None:
+    """Write into a device or pipe as it is (it cannot be replaced, and must not be)."""
+    if callable(write):
+        with tempfile.TemporaryDirectory(prefix=".circuitsim-") as tmpdir:
+            tmp = os.path.join(tmpdir, "out" + Path(target).suffix)
+            write(tmp)
+            with open(tmp, "rb") as src, open(target, "wb") as dst:
+                shutil.copyfileobj(src, dst)
+        return
+    data = write.encode("utf-8") if isinstance(write, str) else write
+    with open(target, "wb") as fh:
+        fh.write(data)
 
 
 RowError = Callable[[str, int], Exception]

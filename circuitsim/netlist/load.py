@@ -33,7 +33,7 @@ from circuitsim.component import (
 from circuitsim.errors import NetlistError, ParameterError, SourceLoc
 from circuitsim.files import atomic_write
 from circuitsim.netlist import expr as ex
-from circuitsim.units import Dim, compatible, explain_mismatch, unit_info
+from circuitsim.units import Dim, compatible, describe, explain_mismatch, spice_value, unit_info
 
 SCHEMA_PATH = Path(__file__).with_name("schema.json")
 
@@ -106,6 +106,7 @@ class Netlist:
     analysis: Analysis
     nodes: Mapping[str, tuple[str, SourceLoc]] = field(default_factory=dict)
     raw: Any = field(default=None, repr=False, compare=False)
+    inputs: tuple[str, ...] = ()  # every file read: the netlist, its includes, its tables
 
     def component(self, name: str) -> ComponentSpec:
         for c in self.components:
@@ -256,6 +257,7 @@ class RawNetlist:
     analysis: dict[str, tuple[Any, SourceLoc]] = field(default_factory=dict)
     title: str = ""
     path: str = ""
+    files: list[str] = field(default_factory=list)  # the netlist and its includes
 
     def copy(self) -> RawNetlist:
         import copy
@@ -321,6 +323,7 @@ def _gather(path: Path, raw: _Raw, stack: tuple[Path, ...]) -> None:
         raise NetlistError(f"include cycle: {chain}", SourceLoc(str(stack[-1])))
     doc = _read_yaml(path)
     sp = str(path)
+    raw.files.append(sp)
     for i, inc in enumerate(doc.get("include", []) or []):
         target = (path.parent / inc)
         if not target.exists():
@@ -342,7 +345,18 @@ def _gather(path: Path, raw: _Raw, stack: tuple[Path, ...]) -> None:
         raw.analysis[str(k)] = (analysis[k], _loc(sp, analysis, key=k))
 
 
-def _parse_value(text: Any, loc: SourceLoc, what: str, comp: str | None = None) -> ex.Node:
+def _parse_value(text: Any, loc: SourceLoc, what: str, comp: str | None = None,
+                 unit: str | None = None) -> ex.Node:
+    """Parse a value; ``unit`` (the expected one, if known) decides a SPICE suffix that is also
+    a unit (``1F`` on a capacitor is a farad; see ``units.spice_value``)."""
+    if isinstance(text, str):
+        try:
+            target = unit_info(unit)[1] if unit is not None else None
+            plain = spice_value(text, target)
+        except ValueError as exc:
+            raise ParameterError(f"{what}: {exc}", loc, comp) from None
+        if plain is not None:
+            return ex.Node("num", float(plain))
     if isinstance(text, bool):
         raise ParameterError(f"{what} must be a number or expression, not {text}", loc, comp)
     if isinstance(text, (int, float)):
@@ -448,10 +462,11 @@ class _Builder:
         self.dims = {k: p.dim for k, p in params.items()}
         self.nodes = nodes
         self.n_tables = 0
+        self.table_files: list[str] = []
 
     def value(self, raw: Any, loc: SourceLoc, comp: str, key: str, param: Param,
               unit: str, local: Mapping[str, Value] | None = None) -> Value:
-        node = _parse_value(raw, loc, f"parameter '{key}'", comp)
+        node = _parse_value(raw, loc, f"parameter '{key}'", comp, unit)
         for dep in ex.names(node):
             if dep not in self.params:
                 raise ParameterError(f"parameter '{key}' refers to unknown parameter '{dep}'"
@@ -468,7 +483,8 @@ class _Builder:
                 raise ParameterError(f"parameter '{key}': {explain_mismatch(dim, target, unit)}",
                                      loc, comp)
         elif dim is not None and unit == "1" and dim.dims and _carries_units(node, self.dims):
-            raise ParameterError(f"parameter '{key}' must be dimensionless, got {dim}", loc, comp)
+            raise ParameterError(f"parameter '{key}' must be dimensionless, got "
+                                 f"{describe(dim)}", loc, comp)
         why = param.violation(val)
         if why:
             raise ParameterError(f"{key} = {val:g} [{unit}]: {why} ({param.doc})", loc, comp)
@@ -641,6 +657,7 @@ class _Builder:
         file = Path(path).parent / str(body["file"])
         x, y = read_column(file, str(body["column"]), str(body.get("time", "time")), loc, comp)
         self.n_tables += 1
+        self.table_files.append(str(file))
         return TableData(x, y, f"{file.name}:{body['column']}")
 
     def bind_node(self, node: str, domain: str, loc: SourceLoc, comp: str, port: str) -> None:
@@ -699,7 +716,8 @@ def build(raw: RawNetlist) -> Netlist:
     tables = [t for c in comps for t in c.tables]
     if tables:
         comps = _index_tables(comps)
-    return Netlist(str(path), raw.title, params, tuple(comps), probes, analysis, nodes, raw)
+    return Netlist(str(path), raw.title, params, tuple(comps), probes, analysis, nodes, raw,
+                   (*dict.fromkeys(raw.files), *dict.fromkeys(b.table_files)))
 
 
 def _check_node_names(nodes: Mapping[str, tuple[str, SourceLoc]],

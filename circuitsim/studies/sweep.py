@@ -32,15 +32,19 @@ def parse_range(text: str, unit: str | None = None, dim=None) -> list[float]:
     """Values of a sweep axis: ``1e-9..1e-1:log:9``, ``0..1:lin:5``, or ``1,2,5`` [SI].
 
     A value written with a unit is checked against ``unit`` (a unit string) or ``dim`` (a
-    units.Dim): ``10k`` is not 10 000 but 10 Boltzmann constants, and is refused for Hz.
+    units.Dim); a SPICE multiplier scales the number (``10k`` is 10 000; see
+    ``units.spice_value`` for ``1F`` and ``1M``).
     """
     from circuitsim.netlist import expr as ex
-    from circuitsim.units import compatible, explain_mismatch, unit_info
+    from circuitsim.units import compatible, explain_mismatch, spice_value, unit_info
 
     target = dim if dim is not None else (unit_info(unit)[1] if unit else None)
 
     def num(s: str) -> float:
         try:
+            plain = spice_value(s, target)
+            if plain is not None:
+                return float(plain)
             node = ex.parse(s.strip())
             if ex.names(node):
                 raise ex.ExprError("names are not allowed here", s, 0)
