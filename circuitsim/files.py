@@ -13,6 +13,7 @@ import csv
 import errno
 import math
 import os
+import re
 import shutil
 import stat
 import tempfile
@@ -112,8 +113,11 @@ def atomic_write(path: str | os.PathLike, write: Callable[[str], None] | str | b
     except OutputError:
         raise
     except OSError as exc:
-        raise OutputError(f"cannot write '{os.fspath(path)}': {exc.strerror or exc}"
-                          f"{_HINTS.get(exc.errno or 0, '')}") from None
+        hint = _HINTS.get(exc.errno or 0, "")
+        if exc.errno == errno.ENOENT and os.path.isdir(folder):
+            hint = " (this folder does not take new files; write elsewhere)"
+        raise OutputError(f"cannot write '{os.fspath(path)}': {exc.strerror or exc}{hint}") \
+            from None
 
 
 _HINTS = {errno.ENOSPC: " (the disk is full; free space and run again)",
@@ -155,12 +159,14 @@ def _write_through(target: str, write: Callable[[str], None] | str | bytes) -> N
         fh.write(data)
 
 
+_UNIT_SUFFIX = re.compile(r"\s*\[[^\[\]]*\]$")
+
 RowError = Callable[[str, int], Exception]
 """Builds the caller's own error from (message, 1-based file line; 0 for the whole file)."""
 
 
 def read_rows(path: str | os.PathLike, error: RowError) -> tuple[list[str], list[list[str]]]:
-    """The header (stripped) and the non-blank text rows of a CSV file ([], [] when empty).
+    """The header (stripped, units in brackets dropped) and the non-blank text rows of a CSV file ([], [] when empty).
 
     Raises ``error(...)`` for a missing, unreadable or non-UTF-8 file.
     """
@@ -180,7 +186,8 @@ def read_rows(path: str | os.PathLike, error: RowError) -> tuple[list[str], list
     rows = [r for r in rows if any(c.strip() for c in r)]  # blank lines carry nothing
     if not rows:
         return [], []  # the caller says what an empty file should have held
-    return [h.strip() for h in rows[0]], rows[1:]
+    # a unit in brackets ('v_out [V]', as `circuitsim run` writes them) is not part of the name
+    return [_UNIT_SUFFIX.sub("", h.strip()) for h in rows[0]], rows[1:]
 
 
 def numeric_rows(path: str | os.PathLike, header: list[str], rows: list[list[str]],

@@ -18,7 +18,7 @@ def _atomic_text(path: str, text: str) -> None:
 def add_cli(sub) -> None:
     d = sub.add_parser("diagnose", help="trace the residual against measured data to a "
                        "physical effect the model lacks")
-    d.add_argument("netlist")
+    d.add_argument("netlist", help="netlist YAML file")
     d.add_argument("data", help="CSV record: time + one column per probe [SI]")
     d.add_argument("--free", default="", help="declared free parameters, comma-separated")
     d.add_argument("--probe", "--probes", dest="probes", action="append", metavar="NAME[,NAME]",
@@ -29,7 +29,8 @@ def add_cli(sub) -> None:
     d.add_argument("--time", default="time", help="name of the time column [s]")
     d.add_argument("--inputs", default="", help="other columns of the CSV that are not "
                    "probes (measured inputs, unused signals), comma-separated")
-    d.add_argument("--max-effects", type=int, default=MAX_EFFECTS)
+    d.add_argument("--max-effects", type=int, default=MAX_EFFECTS,
+                   help=f"largest number of effects to add (default {MAX_EFFECTS})")
     d.add_argument("--set", action="append", metavar="NAME=VALUE",
                    help="override a parameter (units checked); for a declared free one, its "
                         "start value. The written netlist carries the value")

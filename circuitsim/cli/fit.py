@@ -18,7 +18,7 @@ def add_cli(sub) -> None:
                        description="Nonlinear least squares of free netlist parameters against "
                        "a CSV record (time + one column per probe, SI) or a features YAML "
                        "(steady means, harmonic amplitude/frequency).")
-    f.add_argument("netlist")
+    f.add_argument("netlist", help="netlist YAML file")
     f.add_argument("data", help="CSV record or features YAML")
     f.add_argument("--free", default="", metavar="NAME,...",
                    help="parameters to estimate (netlist 'La' or component 'La.L'); none: "
