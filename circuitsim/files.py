@@ -191,8 +191,9 @@ def read_rows(path: str | os.PathLike, error: RowError) -> tuple[list[str], list
 
 
 def numeric_rows(path: str | os.PathLike, header: list[str], rows: list[list[str]],
-                 error: RowError) -> np.ndarray:
-    """The rows as a float array (rows x columns); the first bad cell raises ``error``."""
+                 error: RowError, echo: bool = True) -> np.ndarray:
+    """The rows as a float array (rows x columns); the first bad cell raises ``error``, quoting
+    the cell only when ``echo`` (a file a netlist names may be private: never quoted)."""
     p = os.fspath(path)
     try:
         # the fast path; on any doubt the row-by-row scan finds the offending cell
@@ -201,11 +202,11 @@ def numeric_rows(path: str | os.PathLike, header: list[str], rows: list[list[str
             raise ValueError
         return arr.reshape(len(rows), len(header))
     except ValueError:
-        return _scan_rows(p, header, rows, error)
+        return _scan_rows(p, header, rows, error, echo)
 
 
 def _scan_rows(path: str, header: list[str], rows: list[list[str]],
-               error: RowError) -> np.ndarray:
+               error: RowError, echo: bool = True) -> np.ndarray:
     out = np.empty((len(rows), len(header)))
     for i, row in enumerate(rows):
         line = i + 2
@@ -221,7 +222,8 @@ def _scan_rows(path: str, header: list[str], rows: list[list[str]],
             try:
                 v = float(s)
             except ValueError:
-                raise error(f"row {line}, column '{header[j]}': '{s[:20]}' is not a number. "
+                shown = f"'{s[:20]}'" if echo else "the value"
+                raise error(f"row {line}, column '{header[j]}': {shown} is not a number. "
                             f"Write plain numbers in SI units (no unit suffixes, no thousands "
                             f"separators); put units in the netlist", line) from None
             if not math.isfinite(v):

@@ -16,9 +16,12 @@ def _atomic_text(path: str, text: str) -> None:
 
 
 def add_cli(sub) -> None:
+    from circuitsim.cli.main import ALLOW_HELP
+
     d = sub.add_parser("diagnose", help="trace the residual against measured data to a "
                        "physical effect the model lacks")
     d.add_argument("netlist", help="netlist YAML file")
+    d.add_argument("--allow-outside", action="store_true", help=ALLOW_HELP)
     d.add_argument("data", help="CSV record: time + one column per probe [SI]")
     d.add_argument("--free", default="", help="declared free parameters, comma-separated")
     d.add_argument("--probe", "--probes", dest="probes", action="append", metavar="NAME[,NAME]",
@@ -43,7 +46,7 @@ def cmd_diagnose(args) -> int:
     from circuitsim.compiler.model import compile as compile_model
     from circuitsim.netlist.load import load
 
-    net = load(args.netlist)
+    net = load(args.netlist, allow_outside=args.allow_outside)
     for path, what in ((args.report, "--report"), (args.html, "--html"),
                        (args.write_netlist, "--write-netlist")):
         if path:

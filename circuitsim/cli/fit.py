@@ -13,12 +13,15 @@ from circuitsim.loop.record import DataError, FeatureSet
 
 
 def add_cli(sub) -> None:
+    from circuitsim.cli.main import ALLOW_HELP
+
     """Register ``circuitsim fit`` on an argparse subparsers action."""
     f = sub.add_parser("fit", help="fit free parameters to a measured record or features",
                        description="Nonlinear least squares of free netlist parameters against "
                        "a CSV record (time + one column per probe, SI) or a features YAML "
                        "(steady means, harmonic amplitude/frequency).")
     f.add_argument("netlist", help="netlist YAML file")
+    f.add_argument("--allow-outside", action="store_true", help=ALLOW_HELP)
     f.add_argument("data", help="CSV record or features YAML")
     f.add_argument("--free", default="", metavar="NAME,...",
                    help="parameters to estimate (netlist 'La' or component 'La.L'); none: "
@@ -52,7 +55,7 @@ def cmd_fit(args) -> int:
     from circuitsim.loop.record import load_data
     from circuitsim.netlist.load import load
 
-    net = load(args.netlist)
+    net = load(args.netlist, allow_outside=args.allow_outside)
     if args.report:
         check_output(args.report, (*net.inputs, args.data), "--report")
     with warnings.catch_warnings(record=True) as caught:

@@ -23,6 +23,9 @@ from circuitsim.errors import CircuitsimError, ParameterError, SolverError
 from circuitsim.files import atomic_write, check_output
 from circuitsim.report.plots import _bode, plot
 
+ALLOW_HELP = ("let the netlist include or read tables from files outside its own folder tree "
+              "(refused by default: a netlist from someone else must not read your files)")
+
 
 def parse_quantity(text: str, unit: str) -> float:
     """A value typed on the command line, in SI: a number, a number with a unit (``10 ms``)
@@ -184,8 +187,12 @@ def write_run_csv(res, path: str, names: list[str], after: float = 0.0,
 
 def _simulate(model, args, overrides: dict[str, float]):
     from circuitsim.cli.progress import time_bar
+    from circuitsim.netlist.load import MAX_OUTPUT_POINTS, output_points, too_many_points
 
     stop = args.stop if args.stop is not None else model.netlist.analysis.stop
+    points = output_points(stop, model.netlist.analysis.step)
+    if points > MAX_OUTPUT_POINTS:
+        raise ParameterError(f"{args.netlist}: {too_many_points(points)}")
     # points before --after are not written: do not keep them in memory either, except the
     # first and the whole steady window (the summary needs every point of it)
     opts = {}
@@ -199,7 +206,7 @@ def cmd_run(args) -> int:
     from circuitsim.compiler.model import compile as compile_model
     from circuitsim.netlist.load import load
 
-    net = load(args.netlist)
+    net = load(args.netlist, allow_outside=args.allow_outside)
     files = _run_outputs(args, net)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
@@ -261,7 +268,7 @@ def cmd_check(args) -> int:
     from circuitsim.compiler.model import CompiledModel, derive
     from circuitsim.netlist.load import load
 
-    net = load(args.netlist)
+    net = load(args.netlist, allow_outside=args.allow_outside)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         cg, dae, idx = derive(net)
@@ -287,7 +294,7 @@ def cmd_equations(args) -> int:
     from circuitsim.compiler.model import derive
     from circuitsim.netlist.load import load
 
-    net = load(args.netlist)
+    net = load(args.netlist, allow_outside=args.allow_outside)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         _, dae, idx = derive(net)
@@ -356,8 +363,9 @@ def cmd_sweep(args) -> int:
     from circuitsim.netlist.load import load
     from circuitsim.studies.sweep import Metrics, sweep
 
-    first = load(args.netlists[0])
-    inputs = [i for n in args.netlists for i in load(n).inputs]
+    nets = [load(n, allow_outside=args.allow_outside) for n in args.netlists]
+    first = nets[0]
+    inputs = [i for n in nets for i in n.inputs]
     for path, what in ((args.out, "--out"), (args.plot, "--plot")):
         if path:
             check_output(path, inputs, what)
@@ -368,7 +376,8 @@ def cmd_sweep(args) -> int:
     with count_bar(0, "sweep", quiet=args.quiet) as bar:
         rows = sweep(args.netlists, grid, mode="zip" if args.zip else "product",
                      metrics=metrics, stop=args.stop, jobs=args.jobs, out=args.out,
-                     resume=args.resume, progress=bar)
+                     resume=args.resume, progress=bar,
+                     allow_outside=args.allow_outside)
     failed = [r for r in rows if r.get("status") != "ok"]
     print(f"{len(rows)} runs, {len(failed)} failed" + (f"; table: {args.out}" if args.out
                                                           else ""), file=sys.stderr)
@@ -398,13 +407,13 @@ def _sweep_plot(args, rows: list[dict], grid: dict, probes: list[str]) -> None:
         print(f"plot: {args.plot}", file=sys.stderr)
 
 
-def _load_model(path: str):
+def _load_model(path: str, allow_outside: bool = False):
     from circuitsim.compiler.model import compile as compile_model
     from circuitsim.netlist.load import load
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        return compile_model(load(path))
+        return compile_model(load(path, allow_outside=allow_outside))
 
 
 def _freqs(text: str, points: int) -> list[float]:
@@ -418,7 +427,7 @@ def _freqs(text: str, points: int) -> list[float]:
 def cmd_op(args) -> int:
     from circuitsim.solve.op import operating_point, probe_values
 
-    model = _load_model(args.netlist)
+    model = _load_model(args.netlist, args.allow_outside)
     params = _parse_sets(model, args.set or [])
     op = operating_point(model, params, t=args.time)
     probes = probe_values(model, op, params, t=args.time)
@@ -447,7 +456,7 @@ def cmd_op(args) -> int:
 def cmd_ac(args) -> int:
     from circuitsim.solve.ac import ac, harmonic_response, linearize
 
-    model = _load_model(args.netlist)
+    model = _load_model(args.netlist, args.allow_outside)
     if args.plot:
         check_output(args.plot, model.netlist.inputs, "--plot")
     params = _parse_sets(model, args.set or [])
@@ -481,7 +490,7 @@ def cmd_ac(args) -> int:
 def cmd_pss(args) -> int:
     from circuitsim.solve.pss import periodic_steady_state
 
-    model = _load_model(args.netlist)
+    model = _load_model(args.netlist, args.allow_outside)
     params = _parse_sets(model, args.set or [])
     if args.period is None and not model.shafts:
         raise ParameterError(f"{args.netlist}: pss of a circuit without a shaft needs the "
@@ -516,6 +525,7 @@ def _add_run(sub) -> None:
                        "final value and ripple over the steady window, write a CSV (units in "
                        "the header) and a PNG.")
     r.add_argument("netlist", help="netlist YAML file")
+    r.add_argument("--allow-outside", action="store_true", help=ALLOW_HELP)
     r.add_argument("--set", action="append", metavar="NAME=VALUE",
                    help="override a parameter (units or SPICE suffixes: --set La=0.9mH, R=2k)")
     r.add_argument("--stop", type=quantity("s"), help="stop time (e.g. 0.1, 10ms)")
@@ -539,6 +549,7 @@ def _add_run(sub) -> None:
 def _add_sweep(sub) -> None:
     w = sub.add_parser("sweep", help="parameter/topology sweep into a table")
     w.add_argument("netlists", nargs="+", help="netlist YAML files (one topology each)")
+    w.add_argument("--allow-outside", action="store_true", help=ALLOW_HELP)
     w.add_argument("--set", action="append", metavar="NAME=RANGE",
                    help="sweep axis: 1e-9..1e-1:log:9, 0..1:lin:5, or 1,2,5 (units and SPICE "
                         "suffixes allowed: 1k..100k:log:5)")
@@ -566,6 +577,7 @@ def _add_sweep(sub) -> None:
 def _add_analyses(sub) -> None:
     o = sub.add_parser("op", help="DC operating point (rotating machines: averaged model)")
     o.add_argument("netlist", help="netlist YAML file")
+    o.add_argument("--allow-outside", action="store_true", help=ALLOW_HELP)
     o.add_argument("--time", type=quantity("s", inclusive=True), default=0.0,
                    help="time at which the sources are taken (e.g. after a load step: 0.3s)")
     o.add_argument("--set", action="append", metavar="NAME=VALUE", help="override a parameter")
@@ -573,6 +585,7 @@ def _add_analyses(sub) -> None:
     o.set_defaults(func=cmd_op)
     a = sub.add_parser("ac", help="small-signal transfer function around the operating point")
     a.add_argument("netlist", help="netlist YAML file")
+    a.add_argument("--allow-outside", action="store_true", help=ALLOW_HELP)
     a.add_argument("--input", help="source component or parameter (e.g. Vin, M.e0)")
     a.add_argument("--output", required=True, help="probe or variable")
     a.add_argument("--f", default="10..100e3", help="frequencies [Hz]: 10..100k, 10Hz..1kHz, "
@@ -586,6 +599,7 @@ def _add_analyses(sub) -> None:
     a.set_defaults(func=cmd_ac)
     q = sub.add_parser("pss", help="periodic steady state by shooting")
     q.add_argument("netlist", help="netlist YAML file")
+    q.add_argument("--allow-outside", action="store_true", help=ALLOW_HELP)
     q.add_argument("--order", type=quantity("1"), default=1.0,
                    help="rotating circuits: the period is 1/ORDER of a shaft turn (default 1)")
     q.add_argument("--period", type=quantity("s"),
@@ -598,9 +612,11 @@ def _add_analyses(sub) -> None:
 def _add_inspection(sub) -> None:
     c = sub.add_parser("check", help="validate; show the graph and equation counts")
     c.add_argument("netlist", help="netlist YAML file")
+    c.add_argument("--allow-outside", action="store_true", help=ALLOW_HELP)
     c.set_defaults(func=cmd_check)
     e = sub.add_parser("equations", help="print the DAE F(t, x, x', p) = 0")
     e.add_argument("netlist", help="netlist YAML file")
+    e.add_argument("--allow-outside", action="store_true", help=ALLOW_HELP)
     e.add_argument("--latex", action="store_true", help="LaTeX instead of text")
     e.add_argument("--reduced", action="store_true", help="the index-1 form handed to IDA")
     e.set_defaults(func=cmd_equations)

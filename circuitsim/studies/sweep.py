@@ -226,7 +226,7 @@ def sweep(netlists: str | Path | Sequence[str | Path],
           executor: Executor | None = None, jobs: int | None = None,
           out: str | Path | None = None, resume: bool = False,
           progress: Callable[[int, int, dict], None] | None = None,
-          **sim_options: Any) -> list[dict[str, Any]]:
+          allow_outside: bool = False, **sim_options: Any) -> list[dict[str, Any]]:
     """Run every netlist at every grid point; return one row (a dict) per run.
 
     Parameters
@@ -249,7 +249,7 @@ def sweep(netlists: str | Path | Sequence[str | Path],
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         for p in paths:
-            models[str(p)] = compile_model(load(p))
+            models[str(p)] = compile_model(load(p, allow_outside=allow_outside))
     points = grid_points(grid or {}, mode)
     for name in (grid or {}):
         for model in models.values():
