@@ -190,6 +190,70 @@ def read_rows(path: str | os.PathLike, error: RowError) -> tuple[list[str], list
     return [_UNIT_SUFFIX.sub("", h.strip()) for h in rows[0]], rows[1:]
 
 
+def read_header(path: str | os.PathLike, error: RowError) -> list[str]:
+    """The header of a CSV file (stripped, units in brackets dropped; [] when the file holds
+    no row), reading only its first lines. Raises ``error(...)`` as :func:`read_rows`."""
+    p = os.fspath(path)
+    try:
+        with open(p, encoding="utf-8", newline="") as fh:
+            for row in csv.reader(fh):
+                if any(c.strip() for c in row):
+                    return [_UNIT_SUFFIX.sub("", h.strip()) for h in row]
+    except FileNotFoundError:
+        raise error(f"data file '{p}' not found. Check the path", 0) from None
+    except IsADirectoryError:
+        raise error(f"data file '{p}' is a folder, not a CSV file", 0) from None
+    except OSError as exc:
+        raise error(f"cannot read data file '{p}': {exc.strerror}", 0) from None
+    except UnicodeDecodeError:
+        raise error(f"data file '{p}' is not UTF-8 text. Export it as a CSV text file",
+                    0) from None
+    return []
+
+
+def read_body(path: str | os.PathLike, header: list[str], error: RowError,
+              echo: bool = True) -> np.ndarray:
+    """The data rows after the header as a float array (rows x columns), in memory a small
+    multiple of the numbers themselves (numpy's C parser; no list of strings per cell). On
+    any doubt the file is scanned again row by row, and the first bad cell raises
+    ``error`` as :func:`numeric_rows` does."""
+    p = os.fspath(path)
+    try:
+        with open(p, encoding="utf-8", newline="") as fh:
+            _skip_header(fh)
+            arr = np.loadtxt(fh, delimiter=",", dtype=float, ndmin=2, comments=None)
+        if arr.size == 0:
+            return np.empty((0, len(header)))
+        if arr.shape[1] == len(header) and np.all(np.isfinite(arr)):
+            return arr
+    except (ValueError, UnicodeDecodeError):
+        pass
+    return _scan_stream(p, header, error, echo)
+
+
+def _skip_header(fh) -> None:
+    """Advance ``fh`` past the blank lines and the header line."""
+    for line in fh:
+        if line.strip().strip(","):
+            return
+
+
+def _scan_stream(path: str, header: list[str], error: RowError, echo: bool) -> np.ndarray:
+    from array import array
+
+    values = array("d")
+    try:
+        with open(path, encoding="utf-8", newline="") as fh:
+            rows = (r for r in csv.reader(fh) if any(c.strip() for c in r))
+            next(rows, None)  # the header
+            for i, row in enumerate(rows):
+                values.extend(_scan_rows(path, header, [row], error, echo, first=i)[0])
+    except UnicodeDecodeError:
+        raise error(f"data file '{path}' is not UTF-8 text. Export it as a CSV text file",
+                    0) from None
+    return np.frombuffer(values, dtype=float).reshape(-1, len(header)).copy()
+
+
 def numeric_rows(path: str | os.PathLike, header: list[str], rows: list[list[str]],
                  error: RowError, echo: bool = True) -> np.ndarray:
     """The rows as a float array (rows x columns); the first bad cell raises ``error``, quoting
@@ -206,10 +270,10 @@ def numeric_rows(path: str | os.PathLike, header: list[str], rows: list[list[str
 
 
 def _scan_rows(path: str, header: list[str], rows: list[list[str]],
-               error: RowError, echo: bool = True) -> np.ndarray:
+               error: RowError, echo: bool = True, first: int = 0) -> np.ndarray:
     out = np.empty((len(rows), len(header)))
     for i, row in enumerate(rows):
-        line = i + 2
+        line = first + i + 2
         if len(row) != len(header):
             raise error(f"row {line} has {len(row)} values, the header has {len(header)} "
                         f"({', '.join(header)}). Every row needs one value per column; remove "
