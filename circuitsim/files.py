@@ -10,13 +10,19 @@ file, row (the file's line) and column.
 from __future__ import annotations
 
 import csv
+import errno
 import math
 import os
+import re
+import shutil
+import stat
 import tempfile
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from pathlib import Path
 
 import numpy as np
+
+from circuitsim.errors import CircuitsimError
 
 
 def _umask() -> int:
@@ -26,17 +32,102 @@ def _umask() -> int:
     return mask
 
 
+class OutputError(CircuitsimError, OSError):
+    """An output cannot be written (disk full, read-only or missing folder, a folder named as
+    the file) or would overwrite an input. Exit code 3; 2 when the command line named it wrong.
+
+    It is also an ``OSError``, so code that already handles I/O errors keeps doing so.
+    """
+
+    exit_code = 3
+
+
+def check_output(path: str | os.PathLike, inputs: Iterable[str | os.PathLike] = (),
+                 what: str = "output") -> None:
+    """Refuse, before any work, an output that cannot be written or that is one of ``inputs``;
+    create its missing folders (every output does: a run never fails on a new folder).
+
+    Raises OutputError (exit code 2: the command line is wrong) naming the file and the fix.
+    """
+    p = os.fspath(path)
+    real = os.path.realpath(p)
+    for src in inputs:
+        if os.path.exists(src) and os.path.exists(real) and os.path.samefile(real, src):
+            raise _usage(f"{what} '{p}' is the input '{os.fspath(src)}': writing it would "
+                         f"destroy the input; choose another file name")
+    if os.path.isdir(real):
+        raise _usage(f"{what} '{p}' is a folder; name a file inside it")
+    if os.path.exists(real) and not _is_regular(real):
+        return  # a device or pipe (/dev/null, a FIFO) is written through
+    folder = os.path.dirname(real) or "."
+    existing = folder
+    while not os.path.exists(existing):
+        existing = os.path.dirname(existing)
+    if not os.path.isdir(existing):
+        raise _usage(f"{what} '{p}': '{existing}' is a file, not a folder")
+    if not os.access(existing, os.W_OK | os.X_OK):
+        raise _usage(f"{what} '{p}' is in a folder you cannot write ({existing}); write "
+                     f"elsewhere")
+    try:
+        os.makedirs(folder, exist_ok=True)
+    except OSError as exc:
+        raise _usage(f"{what} '{p}': cannot create the folder {folder}: {exc.strerror}") \
+            from None
+
+
+def _usage(message: str) -> OutputError:
+    err = OutputError(message)
+    err.exit_code = 2
+    return err
+
+
+def _is_regular(path: str) -> bool:
+    try:
+        return stat.S_ISREG(os.stat(path).st_mode)
+    except OSError:
+        return False
+
+
 def atomic_write(path: str | os.PathLike, write: Callable[[str], None] | str | bytes,
                  *, make_dirs: bool = True) -> None:
     """Write ``path`` whole or not at all, with the mode the umask gives a new file.
 
     ``write`` is either the content (text or bytes) or a function that writes the content to
-    the temporary path it is given (matplotlib's ``savefig``, numpy's ``savetxt``).
+    the temporary path it is given (matplotlib's ``savefig``, numpy's ``savetxt``). A symbolic
+    link is written through (the link stays, its target is replaced whole); a device or a pipe
+    (``/dev/null``) is written directly. Raises OutputError (also an ``OSError``) when the
+    file cannot be written; no temporary file is left behind.
     """
-    target = os.path.abspath(os.fspath(path))
+    # realpath: replace the file a link points at, never the link itself
+    target = os.path.realpath(os.fspath(path))
     folder = os.path.dirname(target) or "."
-    if make_dirs:
-        os.makedirs(folder, exist_ok=True)
+    try:
+        if os.path.exists(target) and not _is_regular(target):
+            if os.path.isdir(target):
+                raise IsADirectoryError(errno.EISDIR, "is a folder", target)
+            _write_through(target, write)
+            return
+        if make_dirs:
+            os.makedirs(folder, exist_ok=True)
+        _replace(target, folder, write)
+    except OutputError:
+        raise
+    except OSError as exc:
+        hint = _HINTS.get(exc.errno or 0, "")
+        if exc.errno == errno.ENOENT and os.path.isdir(folder):
+            hint = " (this folder does not take new files; write elsewhere)"
+        raise OutputError(f"cannot write '{os.fspath(path)}': {exc.strerror or exc}{hint}") \
+            from None
+
+
+_HINTS = {errno.ENOSPC: " (the disk is full; free space and run again)",
+          errno.EDQUOT: " (the disk quota is exhausted)",
+          errno.EROFS: " (the file system is read-only; write elsewhere)",
+          errno.EACCES: " (no permission; write elsewhere)",
+          errno.ENOENT: " (the folder does not exist; create it first)"}
+
+
+def _replace(target: str, folder: str, write: Callable[[str], None] | str | bytes) -> None:
     fd, tmp = tempfile.mkstemp(dir=folder, prefix=".circuitsim-", suffix=Path(target).suffix)
     try:
         if callable(write):
@@ -49,16 +140,33 @@ def atomic_write(path: str | os.PathLike, write: Callable[[str], None] | str | b
         os.chmod(tmp, 0o666 & ~_umask())
         os.replace(tmp, target)
     finally:
+        # also on KeyboardInterrupt and SystemExit (the CLI turns SIGTERM into one)
         if os.path.exists(tmp):
             os.unlink(tmp)
 
+
+def _write_through(target: str, write: Callable[[str], None] | str | bytes) -> None:
+    """Write into a device or pipe as it is (it cannot be replaced, and must not be)."""
+    if callable(write):
+        with tempfile.TemporaryDirectory(prefix=".circuitsim-") as tmpdir:
+            tmp = os.path.join(tmpdir, "out" + Path(target).suffix)
+            write(tmp)
+            with open(tmp, "rb") as src, open(target, "wb") as dst:
+                shutil.copyfileobj(src, dst)
+        return
+    data = write.encode("utf-8") if isinstance(write, str) else write
+    with open(target, "wb") as fh:
+        fh.write(data)
+
+
+_UNIT_SUFFIX = re.compile(r"\s*\[[^\[\]]*\]$")
 
 RowError = Callable[[str, int], Exception]
 """Builds the caller's own error from (message, 1-based file line; 0 for the whole file)."""
 
 
 def read_rows(path: str | os.PathLike, error: RowError) -> tuple[list[str], list[list[str]]]:
-    """The header (stripped) and the non-blank text rows of a CSV file ([], [] when empty).
+    """The header (stripped, units in brackets dropped) and the non-blank text rows of a CSV file ([], [] when empty).
 
     Raises ``error(...)`` for a missing, unreadable or non-UTF-8 file.
     """
@@ -78,12 +186,78 @@ def read_rows(path: str | os.PathLike, error: RowError) -> tuple[list[str], list
     rows = [r for r in rows if any(c.strip() for c in r)]  # blank lines carry nothing
     if not rows:
         return [], []  # the caller says what an empty file should have held
-    return [h.strip() for h in rows[0]], rows[1:]
+    # a unit in brackets ('v_out [V]', as `circuitsim run` writes them) is not part of the name
+    return [_UNIT_SUFFIX.sub("", h.strip()) for h in rows[0]], rows[1:]
+
+
+def read_header(path: str | os.PathLike, error: RowError) -> list[str]:
+    """The header of a CSV file (stripped, units in brackets dropped; [] when the file holds
+    no row), reading only its first lines. Raises ``error(...)`` as :func:`read_rows`."""
+    p = os.fspath(path)
+    try:
+        with open(p, encoding="utf-8", newline="") as fh:
+            for row in csv.reader(fh):
+                if any(c.strip() for c in row):
+                    return [_UNIT_SUFFIX.sub("", h.strip()) for h in row]
+    except FileNotFoundError:
+        raise error(f"data file '{p}' not found. Check the path", 0) from None
+    except IsADirectoryError:
+        raise error(f"data file '{p}' is a folder, not a CSV file", 0) from None
+    except OSError as exc:
+        raise error(f"cannot read data file '{p}': {exc.strerror}", 0) from None
+    except UnicodeDecodeError:
+        raise error(f"data file '{p}' is not UTF-8 text. Export it as a CSV text file",
+                    0) from None
+    return []
+
+
+def read_body(path: str | os.PathLike, header: list[str], error: RowError,
+              echo: bool = True) -> np.ndarray:
+    """The data rows after the header as a float array (rows x columns), in memory a small
+    multiple of the numbers themselves (numpy's C parser; no list of strings per cell). On
+    any doubt the file is scanned again row by row, and the first bad cell raises
+    ``error`` as :func:`numeric_rows` does."""
+    p = os.fspath(path)
+    try:
+        with open(p, encoding="utf-8", newline="") as fh:
+            _skip_header(fh)
+            arr = np.loadtxt(fh, delimiter=",", dtype=float, ndmin=2, comments=None)
+        if arr.size == 0:
+            return np.empty((0, len(header)))
+        if arr.shape[1] == len(header) and np.all(np.isfinite(arr)):
+            return arr
+    except (ValueError, UnicodeDecodeError):
+        pass
+    return _scan_stream(p, header, error, echo)
+
+
+def _skip_header(fh) -> None:
+    """Advance ``fh`` past the blank lines and the header line."""
+    for line in fh:
+        if line.strip().strip(","):
+            return
+
+
+def _scan_stream(path: str, header: list[str], error: RowError, echo: bool) -> np.ndarray:
+    from array import array
+
+    values = array("d")
+    try:
+        with open(path, encoding="utf-8", newline="") as fh:
+            rows = (r for r in csv.reader(fh) if any(c.strip() for c in r))
+            next(rows, None)  # the header
+            for i, row in enumerate(rows):
+                values.extend(_scan_rows(path, header, [row], error, echo, first=i)[0])
+    except UnicodeDecodeError:
+        raise error(f"data file '{path}' is not UTF-8 text. Export it as a CSV text file",
+                    0) from None
+    return np.frombuffer(values, dtype=float).reshape(-1, len(header)).copy()
 
 
 def numeric_rows(path: str | os.PathLike, header: list[str], rows: list[list[str]],
-                 error: RowError) -> np.ndarray:
-    """The rows as a float array (rows x columns); the first bad cell raises ``error``."""
+                 error: RowError, echo: bool = True) -> np.ndarray:
+    """The rows as a float array (rows x columns); the first bad cell raises ``error``, quoting
+    the cell only when ``echo`` (a file a netlist names may be private: never quoted)."""
     p = os.fspath(path)
     try:
         # the fast path; on any doubt the row-by-row scan finds the offending cell
@@ -92,14 +266,14 @@ def numeric_rows(path: str | os.PathLike, header: list[str], rows: list[list[str
             raise ValueError
         return arr.reshape(len(rows), len(header))
     except ValueError:
-        return _scan_rows(p, header, rows, error)
+        return _scan_rows(p, header, rows, error, echo)
 
 
 def _scan_rows(path: str, header: list[str], rows: list[list[str]],
-               error: RowError) -> np.ndarray:
+               error: RowError, echo: bool = True, first: int = 0) -> np.ndarray:
     out = np.empty((len(rows), len(header)))
     for i, row in enumerate(rows):
-        line = i + 2
+        line = first + i + 2
         if len(row) != len(header):
             raise error(f"row {line} has {len(row)} values, the header has {len(header)} "
                         f"({', '.join(header)}). Every row needs one value per column; remove "
@@ -112,7 +286,8 @@ def _scan_rows(path: str, header: list[str], rows: list[list[str]],
             try:
                 v = float(s)
             except ValueError:
-                raise error(f"row {line}, column '{header[j]}': '{s[:20]}' is not a number. "
+                shown = f"'{s[:20]}'" if echo else "the value"
+                raise error(f"row {line}, column '{header[j]}': {shown} is not a number. "
                             f"Write plain numbers in SI units (no unit suffixes, no thousands "
                             f"separators); put units in the netlist", line) from None
             if not math.isfinite(v):

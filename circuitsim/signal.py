@@ -28,7 +28,8 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.fft
 
-__all__ = ["Harmonic", "dominant_ripple", "harmonic", "resample_uniform", "spectrum"]
+__all__ = ["Harmonic", "Ripple", "dominant_ripple", "harmonic", "resample_uniform",
+           "ripple_summary", "spectrum"]
 
 _MIN_SAMPLES = 8
 _MIN_PERIODS = 2.0
@@ -538,3 +539,106 @@ def dominant_ripple(t: np.ndarray, x: np.ndarray) -> Harmonic:
             trend=float(coef[1]) / half,
         )
     return harmonic(t_arr, x_arr)
+
+
+# A ripple is reported only above these: Fisher's g-test false-alarm probability of the
+# largest periodogram line, the periods the window must hold (two per half, so that the two
+# halves can be compared), and the relative change of mean and rms between the halves that a
+# periodic steady state may show (round-off and the solver's tolerance, not a transient).
+_LINE_P_VALUE = 1e-3
+_STEADY_MIN_PERIODS = 4
+_STEADY_REL_CHANGE = 0.05
+
+
+@dataclass(frozen=True)
+class Ripple:
+    """What the steady window of a waveform holds.
+
+    ``state`` is 'periodic' (a periodic steady state with a significant spectral line: the
+    ripple is ``frequency`` [Hz] and ``amplitude`` [unit of x, peak]), 'settling' (the window
+    still changes: a transient; a significant line, e.g. a decaying ring, is given for
+    information) or 'none' (no significant spectral line: flat or noise). ``mean`` is the mean
+    of the window (over whole periods when periodic) [unit of x]; ``p_value`` is the false-alarm
+    probability of the line (Fisher's g-test; 1.0 when there is none).
+    """
+
+    state: str
+    mean: float
+    frequency: float = 0.0
+    amplitude: float = 0.0
+    p_value: float = 1.0
+
+    @property
+    def label(self) -> str:
+        return {"periodic": "periodic", "settling": "settling",
+                "none": "no periodic ripple"}[self.state]
+
+
+def fisher_g_test(power: np.ndarray) -> tuple[int, float]:
+    """Index of the largest periodogram ordinate and the probability that white noise gives a
+    line that large (Fisher 1929: p = sum_k (-1)^(k-1) C(m,k) (1 - k g)^(m-1), g = max/sum;
+    the first term, m (1 - g)^(m-1), bounds it and is exact where it matters, p < 0.1)."""
+    m = power.size
+    total = float(np.sum(power))
+    k = int(np.argmax(power))
+    if m < 2 or total <= 0.0:
+        return k, 1.0
+    g = float(power[k]) / total
+    return k, min(1.0, m * math.exp((m - 1) * math.log1p(-min(g, 1.0 - 1e-16))))
+
+
+def ripple_summary(t: np.ndarray, x: np.ndarray) -> Ripple:
+    """Classify the window ``t`` [s], ``x`` as a periodic steady state, settling, or without a
+    periodic ripple; see :class:`Ripple`.
+
+    The line is the largest ordinate of the periodogram of the mean-free uniform resample,
+    kept when Fisher's g-test gives a false-alarm probability below 1e-3 and it holds at least
+    four periods; the window is steady when, over a whole number of periods, its two halves
+    agree in mean and rms to 5 % of the rms.
+    """
+    t_arr, x_arr = _as_record(t, x, _MIN_SAMPLES)
+    mean = float(np.mean(x_arr))
+    scale = float(np.max(np.abs(x_arr)))
+    tu, xu = resample_uniform(t_arr, x_arr)
+    dev = xu - np.mean(xu)
+    if float(np.std(dev)) <= _NO_RIPPLE_REL_RMS * max(scale, np.finfo(float).tiny):
+        return Ripple("none", mean)
+    power = np.abs(scipy.fft.rfft(dev))[1:] ** 2
+    k, p = fisher_g_test(power)
+    duration = float(tu[-1] - tu[0])
+    line = (k + 1) / duration  # bin k+1 (the DC bin was dropped)
+    h = None
+    if p <= _LINE_P_VALUE and line * duration >= _MIN_PERIODS:
+        try:
+            h = harmonic(t_arr, x_arr, near=line)
+        except ValueError:
+            h = None
+    if h is None or h.frequency * duration < _STEADY_MIN_PERIODS:
+        # no line, or too few periods to compare two halves: a transient shows as a drift of
+        # the mean well beyond the noise (a quarter of the rms)
+        drift = _drifts(tu, xu, duration, mean_only=0.25)
+        state = "settling" if drift else "none"
+        if h is None:
+            return Ripple(state, mean, p_value=p)
+        return Ripple(state, mean, float(h.frequency), float(h.amplitude), p)
+    periods = int(h.frequency * duration) // 2 * 2
+    span = periods / h.frequency
+    keep = tu >= tu[-1] - span
+    state = "settling" if _drifts(tu[keep], xu[keep], span) else "periodic"
+    whole = float(np.mean(xu[keep][:-1])) if state == "periodic" else mean
+    return Ripple(state, whole, float(h.frequency), float(h.amplitude), p)
+
+
+def _drifts(t: np.ndarray, x: np.ndarray, span: float, mean_only: float | None = None) -> bool:
+    """True when the two halves of ``x`` differ in mean or rms by more than 5 % of its rms
+    (``mean_only``: in mean only, by more than that fraction of the rms)."""
+    first = t < t[0] + 0.5 * span
+    a, b = x[first], x[~first]
+    if a.size < 2 or b.size < 2:
+        return False
+    rms = float(np.std(x))
+    shift = abs(float(np.mean(a)) - float(np.mean(b)))
+    if mean_only is not None:
+        return shift > mean_only * rms
+    return (shift > _STEADY_REL_CHANGE * rms or
+            abs(float(np.std(a)) - float(np.std(b))) > _STEADY_REL_CHANGE * rms)

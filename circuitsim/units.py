@@ -132,4 +132,65 @@ def explain_mismatch(value: Dim, target: Dim, target_unit: str) -> str:
             return (f"this quantity is not per angle: give it in {target_unit} "
                     f"(a frequency in Hz, not rad/s)")
         return f"the angle units do not match {target_unit}"
-    return f"has dimension {value}, expected {target} (a value in {target_unit})"
+    return (f"has dimension {describe(value)}, expected {describe(target)} (a value in "
+            f"{target_unit})")
+
+
+# SPICE multipliers, case-insensitive as in SPICE. 'mil' is a thousandth of an inch.
+SPICE_SCALE = {"f": 1e-15, "p": 1e-12, "n": 1e-9, "u": 1e-6, "µ": 1e-6, "μ": 1e-6, "m": 1e-3,
+               "k": 1e3, "meg": 1e6, "g": 1e9, "t": 1e12, "mil": 25.4e-6}
+# Letters that are also an SI unit symbol a netlist may mean: with no expected unit to decide,
+# they keep the SI meaning (a wrong guess then fails the dimension check loudly, while a bare
+# SPICE number would be taken silently in any unit).
+_SI_SYMBOLS = frozenset({"m", "g", "F", "T", "N"})
+_SPICE_NUMBER = re.compile(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*([A-Za-zµμ]+)\s*")
+
+
+def spice_value(text: str, target: Dim | None = None) -> str | None:
+    """A number followed by a SPICE multiplier alone (``10k``, ``2.2u``, ``1 meg``) as plain
+    number text (``'10000.0'``), or None when ``text`` is anything else.
+
+    The femto trap, decided: letters that are also a unit of the expected dimension ``target``
+    are that unit, so ``1F`` on a capacitor is one farad (write ``1f`` or ``1 fF`` for femto),
+    ``3m`` on a length three metres, ``5g`` on a mass five grams. With no expected dimension
+    (a netlist parameter), ``m g F T N`` keep their SI meaning. ``1M`` is refused (ValueError):
+    milli in SPICE, mega to most readers; write ``1m`` or ``1meg``.
+    """
+    match = _SPICE_NUMBER.fullmatch(text)
+    if match is None:
+        return None
+    number, suffix = match.groups()
+    scale = SPICE_SCALE.get(suffix.lower())
+    if scale is None:
+        return None
+    if suffix == "M":
+        raise ValueError(f"'{text.strip()}' is ambiguous: M is milli in SPICE and mega to most "
+                         f"readers; write '{number}m' (milli) or '{number}meg' (mega)")
+    try:
+        _, dim = unit_info(suffix)
+    except ValueError:
+        dim = None
+    if dim is not None and (compatible(dim, target) if target is not None
+                            else suffix in _SI_SYMBOLS):
+        return None  # the SI unit it also names
+    return repr(float(number) * scale)
+
+
+# Names for the dimensions a user meets, so a message says 'ohm', not 'current^-2·length^2·...'
+_NAMED_UNITS = ("V", "A", "ohm", "S", "F", "H", "W", "J", "C", "Wb", "T", "s", "Hz", "m", "kg",
+                "N", "N*m", "N*m*s/rad", "kg*m^2", "rad", "rad/s", "V*s/rad", "m/s", "K")
+
+
+@functools.lru_cache(maxsize=1)
+def _dim_names() -> dict[Dim, str]:
+    out: dict[Dim, str] = {}
+    for unit in _NAMED_UNITS:
+        out.setdefault(unit_info(unit)[1], unit)
+    return out
+
+
+def describe(dim: Dim) -> str:
+    """A dimension in words: its unit's name when it has a common one (``ohm``), else the base
+    dimensions."""
+    name = _dim_names().get(dim)
+    return f"{name} ({dim})" if name else str(dim)

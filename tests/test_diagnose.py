@@ -79,6 +79,7 @@ HIDDEN = [
 ]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("hidden", HIDDEN, ids=[h[0] for h in HIDDEN])
 def test_one_hidden_effect_is_found_first(hidden):
     effect, target, order, vals = hidden
@@ -125,6 +126,7 @@ def test_no_hidden_effect_no_false_alarm():
         assert d.summary().startswith("nothing significant")
 
 
+@pytest.mark.slow
 def test_two_hidden_effects_are_both_found():
     rec = make_record([("coulomb-friction", "rotor", None, [5e-4]),
                        ("cogging", "rotor", 6, [1e-3, 0.0])], seed=5)

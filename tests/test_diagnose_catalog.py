@@ -51,7 +51,7 @@ def make_record(motor: str, patches, seed: int = 0) -> Record:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         model = cs.compile(build(raw))
-    t = np.arange(int(round(m["stop"] * m["rate"])) + 1) / m["rate"]
+    t = np.arange(round(m["stop"] * m["rate"]) + 1) / m["rate"]
     fine = np.linspace(0.0, m["stop"], 5 * (t.size - 1) + 1)
     res = model.simulate(stop=m["stop"], t_eval=fine, params=values, rtol=1e-10, atol=1e-12)
     assert res.success, res.message

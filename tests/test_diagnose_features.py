@@ -19,6 +19,9 @@ from circuitsim.solve.op import operating_point, probe_values
 
 from conftest import NETLISTS
 
+# the module fixture (a full features diagnosis) takes ~25 s: the slow set
+pytestmark = pytest.mark.slow
+
 KIM = NETLISTS / "kim2024"
 
 

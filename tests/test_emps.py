@@ -24,6 +24,9 @@ from circuitsim.netlist import build
 
 from conftest import NETLISTS, ROOT
 
+# the diagnosis fixture alone takes minutes: the whole module runs in the slow set
+pytestmark = pytest.mark.slow
+
 DATA = ROOT / "tests" / "data" / "emps"
 EMPS = NETLISTS / "emps" / "emps.yaml"
 PULSES = NETLISTS / "emps" / "emps_pulses.yaml"

@@ -168,6 +168,7 @@ def test_recovers_dc_motor_parameters_from_noisy_record(dc_motor):
     np.testing.assert_allclose(res.sim.t, t)
 
 
+@pytest.mark.slow
 def test_standard_errors_cover_the_truth(dc_motor):
     """Over 20 noise seeds, (estimate - truth) / stderr is N(0, 1) for each parameter: its
     mean square is chi2(20)/20, inside [0.30, 2.27] with probability 0.999 (so the RMS within
@@ -229,6 +230,7 @@ def test_series_resistors_cannot_be_told_apart(compile_text):
 
 # ------------------------------------------------------- the phase-misalignment trap
 
+@pytest.mark.slow
 def test_staged_fit_survives_rotor_angle_phase_misalignment(kim):
     """Kim & Kim motor, 0.1 s of supply current only (the 825 Hz ripple is locked to the rotor
     angle), white noise 0.02 A; start k_t 14 % and La 15 % off.

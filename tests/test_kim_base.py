@@ -69,6 +69,7 @@ def test_parameters_change_without_recompiling(base_model):
     assert h.amplitude == pytest.approx(small_signal_i8({"La": 0.9e-3}), rel=5e-5)
 
 
+@pytest.mark.slow
 def test_fig6_failure_does_not_occur_in_a_20s_run(base_model):
     """Ripple is sin(8 phi) of the rotor angle: after 20 s its amplitude equals the 0.3 s
     value within 1e-4 and no other harmonic grows (the paper's chirp does not appear)."""

@@ -156,6 +156,7 @@ TOL_I8 = 5e-6  # relative
 TOL_THETA = 1.25e-5  # [rad]
 
 
+@pytest.mark.slow
 def test_kim_steady_figures_match_ngspice() -> None:
     require_ngspice()
     kim_runs = _kim_runs()

@@ -90,6 +90,7 @@ def test_resume_after_a_killed_sweep_gives_the_same_table(tmp_path):
                                                             for r in full]
 
 
+@pytest.mark.slow
 def test_local_processes_and_dask_cluster_agree(tmp_path):
     distributed = pytest.importorskip("distributed")
     grid = {"Lf": [1e-4, 1e-3, 1e-2]}

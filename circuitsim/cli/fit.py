@@ -6,18 +6,22 @@ import json
 import sys
 import warnings
 
-from circuitsim.files import atomic_write
+from circuitsim.cli.progress import status_line
+from circuitsim.files import atomic_write, check_output
 from circuitsim.loop.fit import FitError, fit_features, fit_record, format_result
-from circuitsim.loop.record import FeatureSet
+from circuitsim.loop.record import DataError, FeatureSet
 
 
 def add_cli(sub) -> None:
+    from circuitsim.cli.main import ALLOW_HELP
+
     """Register ``circuitsim fit`` on an argparse subparsers action."""
     f = sub.add_parser("fit", help="fit free parameters to a measured record or features",
                        description="Nonlinear least squares of free netlist parameters against "
                        "a CSV record (time + one column per probe, SI) or a features YAML "
                        "(steady means, harmonic amplitude/frequency).")
-    f.add_argument("netlist")
+    f.add_argument("netlist", help="netlist YAML file")
+    f.add_argument("--allow-outside", action="store_true", help=ALLOW_HELP)
     f.add_argument("data", help="CSV record or features YAML")
     f.add_argument("--free", default="", metavar="NAME,...",
                    help="parameters to estimate (netlist 'La' or component 'La.L'); none: "
@@ -25,7 +29,7 @@ def add_cli(sub) -> None:
     f.add_argument("--set", action="append", metavar="NAME=VALUE",
                    help="override a parameter; for a free one, its start value")
     f.add_argument("--report", metavar="FIT.json", help="write the full report (JSON)")
-    f.add_argument("--probes", default="", metavar="NAME,...",
+    f.add_argument("--probe", "--probes", dest="probes", action="append", metavar="NAME[,NAME]",
                    help="record: probe columns to compare (default: all the record has)")
     f.add_argument("--single-stage", action="store_true",
                    help="record: skip the slow-feature stage (naive waveform fit)")
@@ -37,6 +41,7 @@ def add_cli(sub) -> None:
                         "unless a table source reads them)")
     f.add_argument("--rtol", type=float, default=1e-8, help="record: integrator rtol")
     f.add_argument("--json", action="store_true", help="print the report as JSON")
+    f.add_argument("--quiet", action="store_true", help="no progress line")
     f.set_defaults(func=cmd_fit)
 
 
@@ -50,7 +55,9 @@ def cmd_fit(args) -> int:
     from circuitsim.loop.record import load_data
     from circuitsim.netlist.load import load
 
-    net = load(args.netlist)
+    net = load(args.netlist, allow_outside=args.allow_outside)
+    if args.report:
+        check_output(args.report, (*net.inputs, args.data), "--report")
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         model = compile_model(net)
@@ -59,17 +66,21 @@ def cmd_fit(args) -> int:
     data = load_data(args.data, model.probe_names, inputs=inputs, time=args.time)
     overrides = _parse_sets(model, args.set or [])
     free = _split(args.free)
-    with warnings.catch_warnings(record=True) as fit_caught:
+    probes = _split(",".join(args.probes or []))
+    with warnings.catch_warnings(record=True) as fit_caught, \
+            status_line("fit", quiet=args.quiet or args.json) as bar:
         warnings.simplefilter("always")
         if isinstance(data, FeatureSet):
-            if args.probes or args.single_stage:
+            if probes or args.single_stage:
                 raise FitError("--probes and --single-stage apply to a CSV record, not to "
                                "features")
-            result = fit_features(model, data, free, params=overrides, harmonic=args.harmonic)
+            result = fit_features(model, data, free, params=overrides, harmonic=args.harmonic,
+                                  **_progress_kw(fit_features, bar))
         else:
-            result = fit_record(model, data, free, params=overrides,
-                                probes=_split(args.probes) or None,
-                                staged=not args.single_stage, rtol=args.rtol)
+            check_columns(probes, data.names, args.data)
+            result = fit_record(model, data, free, params=overrides, probes=probes or None,
+                                staged=not args.single_stage, rtol=args.rtol,
+                                **_progress_kw(fit_record, bar))
     physics = [str(w.message) for w in caught]
     report = {"netlist": args.netlist, "data": args.data, **result.as_dict(),
               "model_warnings": physics}
@@ -85,6 +96,24 @@ def cmd_fit(args) -> int:
             print(f"report: {args.report}")
     del fit_caught  # the result carries its warnings; the report prints them
     return 0 if result.success else 1
+
+
+def _progress_kw(fn, bar) -> dict:
+    """``progress=bar`` for a fit entry point that takes a progress callback (a message per
+    step), nothing for one that does not yet: the bar then shows the elapsed time only."""
+    import inspect
+
+    if bar is None or "progress" not in inspect.signature(fn).parameters:
+        return {}
+    return {"progress": bar}
+
+
+def check_columns(probes: list[str], columns, data: str) -> None:
+    """Refuse --probe names the record has no column for (exit 2, naming the columns)."""
+    missing = [p for p in probes if p not in columns]
+    if missing:
+        raise DataError(f"{data}: --probe {missing[0]}: the record has no such column "
+                        f"(columns: {', '.join(columns)})")
 
 
 def _write_json(path: str, obj: dict) -> None:

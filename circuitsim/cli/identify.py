@@ -167,7 +167,8 @@ def add_cli(subparsers) -> None:
     """Register ``circuitsim identify {emf, observer, cogging, map}``."""
     ident = subparsers.add_parser("identify", help="identify BLDC parameters from records "
                                   "(Kapun 2008: back-EMF, disturbance observer, cogging)")
-    sub = ident.add_subparsers(dest="identify_command", required=True)
+    sub = ident.add_subparsers(dest="identify_command", required=True, metavar="STEP",
+                               help="identification step")
     shared = _Args()
     e = sub.add_parser("emf", help="back-EMF harmonics from open-circuit phase voltage")
     e.add_argument("file", help="CSV with angle, speed and phase-to-neutral voltage")
@@ -179,7 +180,7 @@ def add_cli(subparsers) -> None:
                    help="relevant order: J_min drop above this fraction of the signal energy")
     e.add_argument("--orders", help="fit these orders (default 1..largest relevant)")
     e.add_argument("--plot", help="PNG of J_min versus K")
-    e.add_argument("--json", action="store_true")
+    e.add_argument("--json", action="store_true", help="print one JSON object")
     e.set_defaults(func=_cmd_emf)
     o = sub.add_parser("observer", help="disturbance torque by a closed-loop observer")
     o.add_argument("file", help="CSV with time, angle, speed and phase currents")
@@ -200,7 +201,7 @@ def add_cli(subparsers) -> None:
                    help="take the compensator output as the disturbance (Kapun's plain fit)")
     c.add_argument("--k-max", type=int, default=0, help="print J_min for K = 0..K_MAX")
     c.add_argument("--plot", help="PNG of J_min versus K (with --k-max)")
-    c.add_argument("--json", action="store_true")
+    c.add_argument("--json", action="store_true", help="print one JSON object")
     c.set_defaults(func=_cmd_cogging)
     m = sub.add_parser("map", help="dominant orders of a measured cogging map")
     m.add_argument("file", help="CSV with shaft angle and torque (or holding current)")
@@ -212,5 +213,5 @@ def add_cli(subparsers) -> None:
     m.add_argument("--k-max", type=int, default=100, help="largest order searched")
     m.add_argument("--orders", help="fit these orders instead of searching")
     m.add_argument("--plot", help="PNG of the map and the fit")
-    m.add_argument("--json", action="store_true")
+    m.add_argument("--json", action="store_true", help="print one JSON object")
     m.set_defaults(func=_cmd_map)

@@ -1,7 +1,10 @@
-"""Command line: ``circuitsim run|check|equations|components``. A thin face over the API.
+"""Command line: ``circuitsim run|sweep|op|ac|pss|fit|diagnose|identify|check|equations|
+components``. A thin face over the API.
 
-Exit codes: 0 success, 2 bad input (the message names file, line, component and the fix),
-1 solver failure (the message names the simulated time and the variable).
+Exit codes: 0 success; 1 solver failure (the message names the simulated time and the variable)
+or, for a sweep, runs that failed; 2 bad input (the message names file, line, component and the
+fix; also an output that is an input or a folder); 3 an output could not be written (disk full,
+read-only folder); 130 interrupted (Ctrl-C), 143 terminated (SIGTERM).
 """
 
 from __future__ import annotations
@@ -10,18 +13,72 @@ import argparse
 import json
 import math
 import os
+import signal
 import sys
 import warnings
+from collections.abc import Callable
 from pathlib import Path
 
 from circuitsim.errors import CircuitsimError, ParameterError, SolverError
+from circuitsim.files import atomic_write, check_output
 from circuitsim.report.plots import _bode, plot
+
+ALLOW_HELP = ("let the netlist include or read tables from files outside its own folder tree "
+              "(refused by default: a netlist from someone else must not read your files)")
+
+
+def parse_quantity(text: str, unit: str) -> float:
+    """A value typed on the command line, in SI: a number, a number with a unit (``10 ms``)
+    or with a SPICE multiplier (``10m``, ``2k``); the unit is checked against ``unit``.
+
+    Raises ValueError saying what was wrong.
+    """
+    from circuitsim.netlist import expr as ex
+    from circuitsim.units import compatible, explain_mismatch, spice_value, unit_info
+
+    target = unit_info(unit)[1]
+    plain = spice_value(text, target)
+    if plain is not None:
+        return float(plain)
+    try:
+        node = ex.parse(text)
+        if ex.names(node):
+            raise ValueError(f"'{text}' is not a number (names such as "
+                             f"{min(ex.names(node))!r} are not allowed here)")
+        value = ex.evaluate(node, {})
+        dim = ex.dimension(node, {})
+    except (ex.ExprError, ZeroDivisionError, OverflowError) as exc:
+        raise ValueError(str(exc)) from None
+    if node.kind == "unit" and dim is not None and not compatible(dim, target):
+        raise ValueError(explain_mismatch(dim, target, unit))
+    return value
+
+
+def quantity(unit: str, minimum: float | None = 0.0, inclusive: bool = False
+             ) -> Callable[[str], float]:
+    """An argparse ``type``: a finite value in ``unit`` above ``minimum`` (or at it when
+    ``inclusive``); argparse turns the refusal into 'error: argument --x: ...' and exit 2."""
+
+    def parse(text: str) -> float:
+        try:
+            value = parse_quantity(text, unit)
+        except ValueError as exc:
+            raise argparse.ArgumentTypeError(str(exc)) from None
+        if not math.isfinite(value):
+            raise argparse.ArgumentTypeError(f"'{text}' is not a finite value")
+        if minimum is not None and (value < minimum or (value == minimum and not inclusive)):
+            rel = ">=" if inclusive else ">"
+            raise argparse.ArgumentTypeError(f"'{text}' must be {rel} {minimum:g} {unit}")
+        return value
+
+    parse.__name__ = f"value in {unit}"  # argparse names the type in its messages
+    return parse
 
 
 def _parse_sets(model, items: list[str]) -> dict[str, float]:
     """``NAME=VALUE`` pairs -> SI floats, units checked against the parameter."""
     from circuitsim.netlist import expr as ex
-    from circuitsim.units import compatible, explain_mismatch, unit_info
+    from circuitsim.units import compatible, explain_mismatch, spice_value, unit_info
 
     out: dict[str, float] = {}
     comp_units = {n: v.unit for c in model.netlist.components for n, v in c.values.items()}
@@ -29,29 +86,35 @@ def _parse_sets(model, items: list[str]) -> dict[str, float]:
         if "=" not in item:
             raise ParameterError(f"--set takes NAME=VALUE, got '{item}'")
         name, text = (s.strip() for s in item.split("=", 1))
+        if name in model.netlist.parameters:
+            target = model.netlist.parameters[name].dim
+            unit = str(target) if target else None
+        else:
+            unit = comp_units.get(name)
+            target = unit_info(unit)[1] if unit and unit != "1" else None
         try:
-            node = ex.parse(text)
+            plain = spice_value(text, target)
+            node = ex.parse(plain if plain is not None else text)
             if ex.names(node):
                 raise ex.ExprError("--set values may not name parameters", text, 0)
             value = ex.evaluate(node, {})
             dim = ex.dimension(node, {})
         except (ex.ExprError, ValueError, ZeroDivisionError) as exc:
             raise ParameterError(f"--set {name}: {exc}") from None
-        if node.kind == "unit":
-            if name in model.netlist.parameters:
-                target = model.netlist.parameters[name].dim
-                unit = str(target) if target else None
-            else:
-                unit = comp_units.get(name)
-                target = unit_info(unit)[1] if unit and unit != "1" else None
-            if target is not None and dim is not None and not compatible(dim, target):
-                raise ParameterError(f"--set {name}: {explain_mismatch(dim, target, unit or '')}")
+        if node.kind == "unit" and target is not None and dim is not None and \
+                not compatible(dim, target):
+            raise ParameterError(f"--set {name}: {explain_mismatch(dim, target, unit or '')}")
         out[name] = value
     return out
 
 
 def summarize(res, window: float) -> dict:
-    """Steady value and dominant ripple of each probe over the last ``window`` of the run."""
+    """Mean, final value and ripple of each probe over the last ``window`` of the run.
+
+    A ripple is reported only for a periodic steady state with a significant spectral line
+    (``signal.ripple_summary``); otherwise its state says 'settling' or 'none' (a significant
+    line of a transient, such as a decaying ring, is still given for information).
+    """
     from circuitsim import signal
 
     out = {}
@@ -61,66 +124,140 @@ def summarize(res, window: float) -> dict:
         entry = {"mean": float(x[m].mean()), "final": float(x[-1]),
                  "unit": res.model.meta["units"].get(name, "")}
         try:
-            h = signal.dominant_ripple(res.t[m], x[m])
-            if h.amplitude > 0:
-                # the fit's offset is the mean free of a partial ripple period
-                entry["mean"] = float(h.offset)
-            entry["ripple"] = {"frequency": float(h.frequency), "amplitude": float(h.amplitude)}
-        except ValueError:
-            entry["ripple"] = {"frequency": 0.0, "amplitude": 0.0}
+            r = signal.ripple_summary(res.t[m], x[m])
+            entry["mean"] = r.mean
+            entry["ripple"] = {"state": r.state, "frequency": r.frequency,
+                               "amplitude": r.amplitude, "p_value": r.p_value}
+        except ValueError:  # too few samples in the window to say anything
+            entry["ripple"] = {"state": "none", "frequency": 0.0, "amplitude": 0.0,
+                               "p_value": 1.0}
         out[name] = entry
     return out
+
+
+def _ripple_text(e: dict) -> str:
+    r, u = e["ripple"], e["unit"]
+    if r["state"] == "periodic":
+        return f"{r['frequency']:.6g} Hz, {_fmt(r['amplitude'], u)} peak"
+    return "settling" if r["state"] == "settling" else "no periodic ripple"
+
+
+def _run_outputs(args, net) -> dict[str, str]:
+    """The files ``run`` will write, checked before the run (never an input, never a folder)."""
+    if args.no_files:
+        return {}
+    stem = Path(args.netlist).stem
+    files = {"csv": args.out or f"{stem}.csv", "plot": args.plot or f"{stem}.png"}
+    for kind, path in files.items():
+        check_output(path, net.inputs, "--out" if kind == "csv" else "--plot")
+    return files
+
+
+def _check_names(model, names: list[str]) -> list[str]:
+    known = {*model.probe_names, *model.meta["observed"], *model.state_names}
+    for n in names:
+        if n not in known:
+            import difflib
+
+            close = difflib.get_close_matches(n, sorted(known), n=3)
+            raise ParameterError(f"--probe {n}: no such probe or variable" +
+                                 (f" (did you mean {', '.join(close)}?)" if close else
+                                  f"; probes: {', '.join(model.probe_names)}"))
+    return names
+
+
+def write_run_csv(res, path: str, names: list[str], after: float = 0.0,
+                  decimate: int = 1) -> None:
+    """Time and the named series, units in the header (``v_out [V]``), atomically; only the
+    points at or after ``after`` [s], every ``decimate``-th of them."""
+    import numpy as np
+
+    keep = np.flatnonzero(res.t >= after)[::decimate]
+    units = res.model.meta["units"]
+    header = ["time [s]"] + [f"{n} [{units[n]}]" if units.get(n) else n for n in names]
+    data = np.column_stack([res.t[keep]] + [res[n][keep] for n in names])
+
+    def write(tmp: str) -> None:
+        with open(tmp, "w", encoding="utf-8") as fh:
+            fh.write(",".join(header) + "\n")
+            np.savetxt(fh, data, delimiter=",", fmt="%.12g")
+
+    atomic_write(path, write)
+
+
+def _simulate(model, args, overrides: dict[str, float]):
+    from circuitsim.cli.progress import time_bar
+    from circuitsim.netlist.load import MAX_OUTPUT_POINTS, output_points, too_many_points
+
+    stop = args.stop if args.stop is not None else model.netlist.analysis.stop
+    points = output_points(stop, model.netlist.analysis.step)
+    if points > MAX_OUTPUT_POINTS:
+        raise ParameterError(f"{args.netlist}: {too_many_points(points)}")
+    # points before --after are not written: do not keep them in memory either, except the
+    # first and the whole steady window (the summary needs every point of it)
+    opts = {}
+    if args.after > 0:
+        opts = {"keep_after": min(args.after, stop * (1 - args.window)), "decimate": 1 << 62}
+    with time_bar(stop, quiet=args.quiet or args.json) as bar:
+        return model.simulate(stop=args.stop, params=overrides, progress=bar, **opts)
 
 
 def cmd_run(args) -> int:
     from circuitsim.compiler.model import compile as compile_model
     from circuitsim.netlist.load import load
 
-    net = load(args.netlist)
+    net = load(args.netlist, allow_outside=args.allow_outside)
+    files = _run_outputs(args, net)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         model = compile_model(net)
     overrides = _parse_sets(model, args.set or [])
     if overrides:
         model.param_values(overrides)  # validate before integrating
+    names = _check_names(model, _split_names(args.probe)) or \
+        list(model.probe_names or model.state_names)
     msgs = [str(w.message) for w in caught] + \
         ([] if not overrides else [w for w in model.physics_warnings(
             model.param_values(overrides)) if w not in model.warnings])
     if not args.json:
         for w in msgs:
             print(f"warning: {w}", file=sys.stderr)
-    res = model.simulate(stop=args.stop, params=overrides)
-    stem = Path(args.netlist).stem
-    files = {}
-    if res.t.size and not args.no_files:
-        csv = args.out or f"{stem}.csv"
-        res.to_csv(csv)
-        files["csv"] = csv
-        png = args.plot or f"{stem}.png"
-        plot(res, png)
-        files["plot"] = png
+    res = _simulate(model, args, overrides)
+    if res.t.size and files:
+        write_run_csv(res, files["csv"], names, args.after, args.decimate)
+        plot(res, files["plot"], names=names, window=args.window)
+    else:
+        files = {}
     if not res.success:
         print(f"error: {net.path}: simulation failed {res.message}", file=sys.stderr)
         if args.json:
             print(json.dumps({"success": False, "message": res.message, "files": files}))
         return 1
-    summary = summarize(res, args.window)
+    _print_run(args, net, res, summarize(res, args.window), msgs, files)
+    return 0
+
+
+def _print_run(args, net, res, summary: dict, msgs: list[str], files: dict) -> None:
     if args.json:
         print(json.dumps({"netlist": args.netlist, "success": True, "stop": float(res.t[-1]),
                           "window": args.window, "probes": summary, "warnings": msgs,
                           "files": files, "stats": {"nfev": res.nfev, "njev": res.njev,
                                                     "points": int(res.t.size)}}, indent=1))
-        return 0
+        return
     print(f"{net.title}: {res.t[-1]:g} s simulated, {res.nfev} residual calls; "
           f"steady window = last {args.window:.0%}")
-    print(f"{'probe':<14}{'mean':>20}{'final':>20}{'ripple freq':>16}{'ripple amplitude':>20}")
+    print(f"{'probe':<14}{'mean':>20}{'final':>20}   ripple")
     for name, e in summary.items():
         u = e["unit"]
-        print(f"{name:<14}{_fmt(e['mean'], u):>20}{_fmt(e['final'], u):>20}"
-              f"{e['ripple']['frequency']:>13.7g} Hz{_fmt(e['ripple']['amplitude'], u):>20}")
+        print(f"{name:<14}{_fmt(e['mean'], u):>20}{_fmt(e['final'], u):>20}   "
+              f"{_ripple_text(e)}")
     for kind, f in files.items():
         print(f"{kind}: {f}")
-    return 0
+
+
+def _split_names(items: list[str] | None) -> list[str]:
+    """``--probe a --probe b,c`` -> [a, b, c]."""
+    return [s.strip() for item in items or [] for s in item.split(",") if s.strip()]
 
 
 def _fmt(x: float, unit: str) -> str:
@@ -131,7 +268,7 @@ def cmd_check(args) -> int:
     from circuitsim.compiler.model import CompiledModel, derive
     from circuitsim.netlist.load import load
 
-    net = load(args.netlist)
+    net = load(args.netlist, allow_outside=args.allow_outside)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         cg, dae, idx = derive(net)
@@ -157,7 +294,7 @@ def cmd_equations(args) -> int:
     from circuitsim.compiler.model import derive
     from circuitsim.netlist.load import load
 
-    net = load(args.netlist)
+    net = load(args.netlist, allow_outside=args.allow_outside)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         _, dae, idx = derive(net)
@@ -205,15 +342,12 @@ def cmd_components(args) -> int:
     return 0
 
 
-def cmd_sweep(args) -> int:
-    from circuitsim.netlist.load import load
-    from circuitsim.report.plots import plot_sweep
-    from circuitsim.studies.sweep import Metrics, parse_range, progress_bar, sweep
+def _sweep_grid(first, items: list[str]) -> dict[str, list[float]]:
+    from circuitsim.studies.sweep import parse_range
 
-    first = load(args.netlists[0])
     units = {n: v.unit for c in first.components for n, v in c.values.items()}
     grid: dict[str, list[float]] = {}
-    for item in args.set or []:
+    for item in items:
         if "=" not in item:
             raise ParameterError(f"--set takes NAME=RANGE (e.g. Lf=1e-9..1e-1:log:9), "
                                  f"got '{item}'")
@@ -221,36 +355,65 @@ def cmd_sweep(args) -> int:
         gp = first.parameters.get(name)
         grid[name] = parse_range(text, unit=None if gp else units.get(name),
                                  dim=gp.dim if gp else None)
-    metrics = Metrics(probes=tuple(args.probe) if args.probe else None, order=args.order,
+    return grid
+
+
+def cmd_sweep(args) -> int:
+    from circuitsim.cli.progress import count_bar
+    from circuitsim.netlist.load import load
+    from circuitsim.studies.sweep import Metrics, sweep
+
+    nets = [load(n, allow_outside=args.allow_outside) for n in args.netlists]
+    first = nets[0]
+    inputs = [i for n in nets for i in n.inputs]
+    for path, what in ((args.out, "--out"), (args.plot, "--plot")):
+        if path:
+            check_output(path, inputs, what)
+    grid = _sweep_grid(first, args.set or [])
+    probes = _split_names(args.probe)
+    metrics = Metrics(probes=tuple(probes) if probes else None, order=args.order,
                       window=args.window, energy=not args.no_energy)
-    rows = sweep(args.netlists, grid, mode="zip" if args.zip else "product", metrics=metrics,
-                 stop=args.stop, jobs=args.jobs, out=args.out, resume=args.resume,
-                 progress=None if args.quiet else progress_bar())
+    with count_bar(0, "sweep", quiet=args.quiet) as bar:
+        rows = sweep(args.netlists, grid, mode="zip" if args.zip else "product",
+                     metrics=metrics, stop=args.stop, jobs=args.jobs, out=args.out,
+                     resume=args.resume, progress=bar,
+                     allow_outside=args.allow_outside)
     failed = [r for r in rows if r.get("status") != "ok"]
     print(f"{len(rows)} runs, {len(failed)} failed" + (f"; table: {args.out}" if args.out
-                                                          else ""))
+                                                          else ""), file=sys.stderr)
     if args.plot:
-        swept = [k for k, v in grid.items() if len(v) > 1]
-        probe = (args.probe or [None])[0] or next(
-            (k[:-len(".ripple_amp")] for k in rows[0] if k.endswith(".ripple_amp")), None)
-        if swept and probe:
-            plot_sweep(rows, swept[0], f"{probe}.ripple_amp", args.plot)
-            print(f"plot: {args.plot}")
+        _sweep_plot(args, rows, grid, probes)
     if not args.out:
         keys = list(dict.fromkeys(k for r in rows for k in r))
         print(",".join(keys))
         for r in rows:
             print(",".join(str(r.get(k, "")) for k in keys))
-    return 1 if failed and len(failed) == len(rows) else 0
+    # a failed run is data the table keeps, but the sweep is not finished: exit 1 (a resume
+    # retries those runs)
+    return 1 if failed else 0
 
 
-def _load_model(path: str):
+def _sweep_plot(args, rows: list[dict], grid: dict, probes: list[str]) -> None:
+    from circuitsim.report.plots import plot_sweep
+
+    swept = [k for k, v in grid.items() if len(v) > 1]
+    metric = args.metric
+    if metric is None:
+        probe = (probes or [None])[0] or next(
+            (k[:-len(".ripple_amp")] for k in rows[0] if k.endswith(".ripple_amp")), None)
+        metric = f"{probe}.ripple_amp" if probe else None
+    if swept and metric:
+        plot_sweep(rows, swept[0], metric, args.plot)
+        print(f"plot: {args.plot}", file=sys.stderr)
+
+
+def _load_model(path: str, allow_outside: bool = False):
     from circuitsim.compiler.model import compile as compile_model
     from circuitsim.netlist.load import load
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        return compile_model(load(path))
+        return compile_model(load(path, allow_outside=allow_outside))
 
 
 def _freqs(text: str, points: int) -> list[float]:
@@ -264,10 +427,10 @@ def _freqs(text: str, points: int) -> list[float]:
 def cmd_op(args) -> int:
     from circuitsim.solve.op import operating_point, probe_values
 
-    model = _load_model(args.netlist)
+    model = _load_model(args.netlist, args.allow_outside)
     params = _parse_sets(model, args.set or [])
-    op = operating_point(model, params)
-    probes = probe_values(model, op, params)
+    op = operating_point(model, params, t=args.time)
+    probes = probe_values(model, op, params, t=args.time)
     bad = [k for k, v in probes.items() if not math.isfinite(v)]
     if bad:
         raise SolverError(f"operating point: probe '{bad[0]}' is {probes[bad[0]]}: its "
@@ -280,8 +443,8 @@ def cmd_op(args) -> int:
                                     if r}, "probes": probes, "iterations": op.iterations},
                          indent=1))
         return 0
-    print(f"operating point of {model.netlist.title} ({op.iterations} Newton steps; shaft "
-          f"ripple averaged over a turn)")
+    print(f"operating point of {model.netlist.title} at t = {args.time:g} s ({op.iterations} "
+          f"Newton steps; shaft ripple averaged over a turn)")
     for name, v in probes.items():
         print(f"  {name:<16}{_fmt(v, model.meta['units'].get(name, '')):>22}")
     for name, y, r in zip(op.names, op.y, op.yp, strict=True):
@@ -293,7 +456,9 @@ def cmd_op(args) -> int:
 def cmd_ac(args) -> int:
     from circuitsim.solve.ac import ac, harmonic_response, linearize
 
-    model = _load_model(args.netlist)
+    model = _load_model(args.netlist, args.allow_outside)
+    if args.plot:
+        check_output(args.plot, model.netlist.inputs, "--plot")
     params = _parse_sets(model, args.set or [])
     lin = linearize(model, params)
     if args.order is not None:
@@ -325,9 +490,15 @@ def cmd_ac(args) -> int:
 def cmd_pss(args) -> int:
     from circuitsim.solve.pss import periodic_steady_state
 
-    model = _load_model(args.netlist)
+    model = _load_model(args.netlist, args.allow_outside)
     params = _parse_sets(model, args.set or [])
-    ps = periodic_steady_state(model, params, order=args.order, period=args.period)
+    if args.period is None and not model.shafts:
+        raise ParameterError(f"{args.netlist}: pss of a circuit without a shaft needs the "
+                             f"period of its driving source: add --period (e.g. --period 1ms)")
+    try:
+        ps = periodic_steady_state(model, params, order=args.order, period=args.period)
+    except ValueError as exc:
+        raise ParameterError(f"pss: {exc}") from None
     out = {"period": ps.period, "frequency": 1 / ps.period, "iterations": ps.iterations,
            "probes": {}}
     for name in model.probe_names:
@@ -348,100 +519,175 @@ def cmd_pss(args) -> int:
     return 0
 
 
-def build_parser() -> argparse.ArgumentParser:
-    ap = argparse.ArgumentParser(prog="circuitsim", description=__doc__.splitlines()[0])
-    sub = ap.add_subparsers(dest="command", required=True)
-    r = sub.add_parser("run", help="transient simulation; summary, CSV and PNG")
-    r.add_argument("netlist")
+def _add_run(sub) -> None:
+    r = sub.add_parser("run", help="transient simulation; summary, CSV and PNG",
+                       description="Integrate the netlist from rest, print each probe's mean, "
+                       "final value and ripple over the steady window, write a CSV (units in "
+                       "the header) and a PNG.")
+    r.add_argument("netlist", help="netlist YAML file")
+    r.add_argument("--allow-outside", action="store_true", help=ALLOW_HELP)
     r.add_argument("--set", action="append", metavar="NAME=VALUE",
-                   help="override a parameter (units allowed: --set La=0.9mH)")
-    r.add_argument("--stop", type=float, help="stop time [s]")
-    r.add_argument("--out", help="CSV file (default: NETLIST_STEM.csv)")
+                   help="override a parameter (units or SPICE suffixes: --set La=0.9mH, R=2k)")
+    r.add_argument("--stop", type=quantity("s"), help="stop time (e.g. 0.1, 10ms)")
+    r.add_argument("--out", help="CSV file (default: NETLIST_STEM.csv; folders are created)")
     r.add_argument("--plot", help="PNG file (default: NETLIST_STEM.png)")
     r.add_argument("--no-files", action="store_true", help="write no CSV or PNG")
+    r.add_argument("--probe", "--probes", action="append", metavar="NAME[,NAME]",
+                   help="series to write and plot: probes or any variable (default: all probes)")
+    r.add_argument("--after", type=quantity("s", inclusive=True), default=0.0,
+                   help="write only the points at or after this time (e.g. 0.8s); also "
+                        "keeps the earlier points out of memory")
+    r.add_argument("--decimate", type=int, default=1, metavar="N",
+                   help="write every N-th point (the summary uses all of them)")
     r.add_argument("--json", action="store_true", help="print one JSON object")
+    r.add_argument("--quiet", action="store_true", help="no progress bar")
     r.add_argument("--window", type=float, default=0.2,
                    help="steady window as a fraction of the run (default 0.2)")
     r.set_defaults(func=cmd_run)
+
+
+def _add_sweep(sub) -> None:
     w = sub.add_parser("sweep", help="parameter/topology sweep into a table")
-    w.add_argument("netlists", nargs="+")
+    w.add_argument("netlists", nargs="+", help="netlist YAML files (one topology each)")
+    w.add_argument("--allow-outside", action="store_true", help=ALLOW_HELP)
     w.add_argument("--set", action="append", metavar="NAME=RANGE",
-                   help="sweep axis: 1e-9..1e-1:log:9, 0..1:lin:5, or 1,2,5 (units allowed)")
+                   help="sweep axis: 1e-9..1e-1:log:9, 0..1:lin:5, or 1,2,5 (units and SPICE "
+                        "suffixes allowed: 1k..100k:log:5)")
     w.add_argument("--zip", action="store_true", help="combine axes element-wise, not as a "
                    "Cartesian product")
     w.add_argument("--jobs", type=int, default=os.cpu_count() or 1,
                    help="local worker processes (default: all cores)")
     w.add_argument("--out", help="CSV table; rows are appended as runs finish")
-    w.add_argument("--resume", action="store_true", help="skip runs already in --out")
-    w.add_argument("--plot", help="PNG of ripple amplitude against the first swept parameter")
-    w.add_argument("--probe", action="append", help="probe(s) to report (default: all)")
+    w.add_argument("--resume", action="store_true", help="skip runs already done in --out; "
+                   "retry the failed ones")
+    w.add_argument("--plot", help="PNG of a metric against the first swept parameter")
+    w.add_argument("--metric", help="column to plot (default: PROBE.ripple_amp)")
+    w.add_argument("--probe", "--probes", action="append", metavar="NAME[,NAME]",
+                   help="probe(s) to report (default: all)")
     w.add_argument("--order", type=float, help="ripple order per shaft revolution "
                    "(default: the dominant ripple)")
-    w.add_argument("--stop", type=float, help="stop time [s]")
-    w.add_argument("--window", type=float, default=0.2)
+    w.add_argument("--stop", type=quantity("s"), help="stop time (e.g. 0.1, 10ms)")
+    w.add_argument("--window", type=float, default=0.2,
+                   help="steady window as a fraction of each run (default 0.2)")
     w.add_argument("--no-energy", action="store_true", help="skip the energy audit columns")
     w.add_argument("--quiet", action="store_true", help="no progress bar")
     w.set_defaults(func=cmd_sweep)
+
+
+def _add_analyses(sub) -> None:
     o = sub.add_parser("op", help="DC operating point (rotating machines: averaged model)")
-    o.add_argument("netlist")
-    o.add_argument("--set", action="append", metavar="NAME=VALUE")
-    o.add_argument("--json", action="store_true")
+    o.add_argument("netlist", help="netlist YAML file")
+    o.add_argument("--allow-outside", action="store_true", help=ALLOW_HELP)
+    o.add_argument("--time", type=quantity("s", inclusive=True), default=0.0,
+                   help="time at which the sources are taken (e.g. after a load step: 0.3s)")
+    o.add_argument("--set", action="append", metavar="NAME=VALUE", help="override a parameter")
+    o.add_argument("--json", action="store_true", help="print one JSON object")
     o.set_defaults(func=cmd_op)
     a = sub.add_parser("ac", help="small-signal transfer function around the operating point")
-    a.add_argument("netlist")
+    a.add_argument("netlist", help="netlist YAML file")
+    a.add_argument("--allow-outside", action="store_true", help=ALLOW_HELP)
     a.add_argument("--input", help="source component or parameter (e.g. Vin, M.e0)")
     a.add_argument("--output", required=True, help="probe or variable")
-    a.add_argument("--f", default="10..100e3", help="frequencies [Hz]: 10..100kHz, or a list")
+    a.add_argument("--f", default="10..100e3", help="frequencies [Hz]: 10..100k, 10Hz..1kHz, "
+                   "or a list 50,60")
     a.add_argument("--points", type=int, default=50, help="points of a log range")
     a.add_argument("--order", type=int, help="instead of --input: the response to the order-K "
                    "harmonic of the shaft angle in the circuit's equations (back-EMF ripple)")
-    a.add_argument("--set", action="append", metavar="NAME=VALUE")
-    a.add_argument("--plot", help="Bode plot PNG")
-    a.add_argument("--json", action="store_true")
+    a.add_argument("--set", action="append", metavar="NAME=VALUE", help="override a parameter")
+    a.add_argument("--plot", help="Bode plot PNG (magnitude in dB, unwrapped phase)")
+    a.add_argument("--json", action="store_true", help="print one JSON object")
     a.set_defaults(func=cmd_ac)
     q = sub.add_parser("pss", help="periodic steady state by shooting")
-    q.add_argument("netlist")
-    q.add_argument("--order", type=float, default=1,
+    q.add_argument("netlist", help="netlist YAML file")
+    q.add_argument("--allow-outside", action="store_true", help=ALLOW_HELP)
+    q.add_argument("--order", type=quantity("1"), default=1.0,
                    help="rotating circuits: the period is 1/ORDER of a shaft turn (default 1)")
-    q.add_argument("--period", type=float, help="driven circuits: the source period [s]")
-    q.add_argument("--set", action="append", metavar="NAME=VALUE")
-    q.add_argument("--json", action="store_true")
+    q.add_argument("--period", type=quantity("s"),
+                   help="driven circuits: the source period (e.g. 1ms, 20e-3)")
+    q.add_argument("--set", action="append", metavar="NAME=VALUE", help="override a parameter")
+    q.add_argument("--json", action="store_true", help="print one JSON object")
     q.set_defaults(func=cmd_pss)
+
+
+def _add_inspection(sub) -> None:
+    c = sub.add_parser("check", help="validate; show the graph and equation counts")
+    c.add_argument("netlist", help="netlist YAML file")
+    c.add_argument("--allow-outside", action="store_true", help=ALLOW_HELP)
+    c.set_defaults(func=cmd_check)
+    e = sub.add_parser("equations", help="print the DAE F(t, x, x', p) = 0")
+    e.add_argument("netlist", help="netlist YAML file")
+    e.add_argument("--allow-outside", action="store_true", help=ALLOW_HELP)
+    e.add_argument("--latex", action="store_true", help="LaTeX instead of text")
+    e.add_argument("--reduced", action="store_true", help="the index-1 form handed to IDA")
+    e.set_defaults(func=cmd_equations)
+    k = sub.add_parser("components", help="list the component library")
+    k.add_argument("--markdown", action="store_true", help="a Markdown table (as in README)")
+    k.set_defaults(func=cmd_components)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    import circuitsim
+
+    ap = argparse.ArgumentParser(prog="circuitsim", description=__doc__.split("\n\n")[0]
+                                 .replace("\n", " "),
+                                 epilog=__doc__.split("\n\n")[1].replace("\n", " "))
+    ap.add_argument("--version", action="version", version=f"circuitsim {circuitsim.__version__}")
+    sub = ap.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    _add_run(sub)
+    _add_sweep(sub)
+    _add_analyses(sub)
     # Studies that live in their own modules register their subcommands themselves
     # (each module keeps its top-level imports light: this runs on every CLI call).
     import importlib
 
     for study in ("circuitsim.cli.fit", "circuitsim.cli.diagnose", "circuitsim.cli.identify"):
         importlib.import_module(study).add_cli(sub)
-    c = sub.add_parser("check", help="validate; show the graph and equation counts")
-    c.add_argument("netlist")
-    c.set_defaults(func=cmd_check)
-    e = sub.add_parser("equations", help="print the DAE F(t, x, x', p) = 0")
-    e.add_argument("netlist")
-    e.add_argument("--latex", action="store_true")
-    e.add_argument("--reduced", action="store_true", help="the index-1 form handed to IDA")
-    e.set_defaults(func=cmd_equations)
-    k = sub.add_parser("components", help="list the component library")
-    k.add_argument("--markdown", action="store_true")
-    k.set_defaults(func=cmd_components)
+    _add_inspection(sub)
     return ap
 
 
+def _terminate(signum: int, _frame) -> None:
+    # SIGTERM ends like Ctrl-C: 'finally' clauses run, so no temporary file is left behind
+    raise SystemExit(128 + signum)
+
+
 def main(argv: list[str] | None = None) -> int:
-    args = build_parser().parse_args(argv)
-    if getattr(args, "window", 0.2) is not None and not 0 < getattr(args, "window", 0.2) <= 1:
-        print("error: --window is a fraction in (0, 1]", file=sys.stderr)
-        return 2
     try:
+        if threading_main():
+            signal.signal(signal.SIGTERM, _terminate)
+        args = build_parser().parse_args(argv)
+        window = getattr(args, "window", 0.2)
+        if window is not None and not 0 < window <= 1:
+            print("error: --window is a fraction in (0, 1]", file=sys.stderr)
+            return 2
+        if getattr(args, "decimate", 1) < 1:
+            print("error: --decimate is a whole number >= 1", file=sys.stderr)
+            return 2
         return int(args.func(args))
     except CircuitsimError as exc:
         print(f"error: {exc}", file=sys.stderr)
         return exc.exit_code
+    except OSError as exc:
+        if isinstance(exc, BrokenPipeError):  # output piped into `head`: not an error of ours
+            sys.stderr.close()
+            return 0
+        print(f"error: {exc.filename or ''}: {exc.strerror or exc}".replace(": : ", ": "),
+              file=sys.stderr)
+        return 3
     except KeyboardInterrupt:
+        print("interrupted", file=sys.stderr)
         return 130
-    except BrokenPipeError:  # output piped into `head`: not an error of ours
-        sys.stderr.close()
-        return 0
+    except RecursionError:
+        print("error: the input is nested too deeply to read", file=sys.stderr)
+        return 2
+
+
+def threading_main() -> bool:
+    """Signal handlers can only be installed from the main thread (tests call main() from
+    others)."""
+    import threading
+
+    return threading.current_thread() is threading.main_thread()
 
 
 if __name__ == "__main__":

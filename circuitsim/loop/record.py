@@ -28,7 +28,7 @@ from typing import Any
 import numpy as np
 
 from circuitsim.errors import CircuitsimError, SourceLoc
-from circuitsim.files import numeric_rows, read_rows
+from circuitsim.files import read_body, read_header
 
 
 class DataError(CircuitsimError):
@@ -97,17 +97,23 @@ def load_record(path: str | Path, probes: Sequence[str] | None = None, *,
         not increase or starts before 0, and a record without any probe column.
     """
     p = str(path)
-    header, body = read_rows(p, _row_error(p))
+    header = read_header(p, _row_error(p))
     if not header:
         raise DataError(f"data file '{p}' is empty. A record is a CSV with a header row "
                         f"('{time},PROBE,...') and one sample per row", SourceLoc(p))
-    rows = [header, *body]
     if all(_is_number(h) for h in header):
         raise DataError(f"data file '{p}' has no header row (the first row is numbers). Add "
                         f"a first row naming the columns: '{time},PROBE,...'", SourceLoc(p, 1))
-    if len(rows) - 1 < MIN_ROWS:
-        raise DataError(f"data file '{p}' has {len(rows) - 1} data rows; a record needs at "
-                        f"least {MIN_ROWS}", SourceLoc(p, len(rows)))
+    _check_header(p, header, probes, inputs, time)
+    arr = read_body(p, header, _row_error(p))
+    if arr.shape[0] < MIN_ROWS:
+        raise DataError(f"data file '{p}' has {arr.shape[0]} data rows; a record needs at "
+                        f"least {MIN_ROWS}", SourceLoc(p, arr.shape[0] + 1))
+    return _record(p, header, arr, time)
+
+
+def _check_header(p: str, header: list[str], probes: Sequence[str] | None,
+                  inputs: Sequence[str], time: str) -> None:
     seen: set[str] = set()
     for j, h in enumerate(header):
         if not h:
@@ -135,7 +141,9 @@ def load_record(path: str | Path, probes: Sequence[str] | None = None, *,
                             f"(columns: {', '.join(header)}; probes: {', '.join(probes)}). "
                             f"Name each measured column after the probe it measures",
                             SourceLoc(p, 1))
-    arr = numeric_rows(p, header, body, _row_error(p))
+
+
+def _record(p: str, header: list[str], arr: np.ndarray, time: str) -> Record:
     t = arr[:, header.index(time)]
     if t[0] < 0:
         raise DataError(f"time starts at {t[0]:g} s (row 2). The model starts from rest at "
@@ -147,8 +155,9 @@ def load_record(path: str | Path, probes: Sequence[str] | None = None, *,
         raise DataError(f"time does not increase at row {k + 3} ({t[k + 1]:g} s after "
                         f"{t[k]:g} s in row {k + 2}). Sort the rows by time and remove "
                         f"duplicate samples", SourceLoc(p, k + 3))
-    cols = {h: arr[:, j].copy() for j, h in enumerate(header) if h != time}
-    return Record(t.copy(), cols, p)
+    # contiguous columns (a strided view would slow every later pass); the table goes after
+    cols = {h: np.ascontiguousarray(arr[:, j]) for j, h in enumerate(header) if h != time}
+    return Record(np.ascontiguousarray(t), cols, p)
 
 
 def _is_number(text: str) -> bool:

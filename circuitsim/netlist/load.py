@@ -11,6 +11,8 @@ import difflib
 import hashlib
 import json
 import math
+import re
+import stat
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from functools import lru_cache
@@ -32,7 +34,7 @@ from circuitsim.component import (
 from circuitsim.errors import NetlistError, ParameterError, SourceLoc
 from circuitsim.files import atomic_write
 from circuitsim.netlist import expr as ex
-from circuitsim.units import Dim, compatible, explain_mismatch, unit_info
+from circuitsim.units import Dim, compatible, describe, explain_mismatch, spice_value, unit_info
 
 SCHEMA_PATH = Path(__file__).with_name("schema.json")
 
@@ -105,6 +107,7 @@ class Netlist:
     analysis: Analysis
     nodes: Mapping[str, tuple[str, SourceLoc]] = field(default_factory=dict)
     raw: Any = field(default=None, repr=False, compare=False)
+    inputs: tuple[str, ...] = ()  # every file read: the netlist, its includes, its tables
 
     def component(self, name: str) -> ComponentSpec:
         for c in self.components:
@@ -183,22 +186,74 @@ def _expanded_size(obj: Any, memo: dict[int, int]) -> int:
     return memo[key]
 
 
-def _read_yaml(path: Path) -> Any:
-    from ruamel.yaml import YAML
-    from ruamel.yaml.error import MarkedYAMLError, YAMLError
+_MAX_DEPTH = 100  # nesting of lists and mappings; a netlist needs a handful
+_ALIAS = re.compile(r"(?:^|[\s\[{,:])\*[^\s,\]}]+", re.MULTILINE)
+_LONG_INT = re.compile(r"\d{4000,}")
 
+
+def _line_at(text: str, pos: int) -> int:
+    return text.count("\n", 0, pos) + 1
+
+
+def _read_text(path: Path) -> str:
     try:
-        text = path.read_text(encoding="utf-8")
+        data = path.read_bytes()
     except OSError as exc:
         raise NetlistError(f"cannot read netlist: {exc.strerror}. Check the path.",
                            SourceLoc(str(path))) from None
-    except UnicodeDecodeError:
-        raise NetlistError("the file is not UTF-8 text", SourceLoc(str(path))) from None
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        line = data.count(b"\n", 0, exc.start) + 1
+        raise NetlistError("the file is not UTF-8 text (a byte here is not valid UTF-8); save "
+                           "it as UTF-8", SourceLoc(str(path), line)) from None
+
+
+def _too_deep(text: str) -> int:
+    """Line where lists/mappings nest deeper than _MAX_DEPTH (0: nowhere). Checked before the
+    parser, which would recurse (slowly) into a RecursionError."""
+    import numpy as np
+
+    codes = np.frombuffer(text.encode("utf-8"), np.uint8)
+    step = np.isin(codes, (ord("["), ord("{"))).astype(np.int32) - \
+        np.isin(codes, (ord("]"), ord("}"))).astype(np.int32)
+    depth = np.cumsum(step)
+    if depth.size and depth.max() > _MAX_DEPTH:
+        pos = int(np.argmax(depth > _MAX_DEPTH))
+        return text.encode("utf-8")[:pos].count(b"\n") + 1
+    deep = re.search(rf"^ {{{2 * _MAX_DEPTH},}}\S", text, re.MULTILINE)
+    return _line_at(text, deep.start()) if deep else 0
+
+
+def _read_yaml(path: Path) -> Any:
+    text = _read_text(path)
+    deep = _too_deep(text)
+    if deep:
+        raise NetlistError(f"lists or mappings are nested too deeply (more than {_MAX_DEPTH} "
+                           f"levels; a netlist needs a few)", SourceLoc(str(path), deep))
+    doc = _parse_yaml(path, text)
+    if _expanded_size(doc, {}) > _MAX_VALUES:
+        alias = _ALIAS.search(text)
+        raise NetlistError(f"the YAML expands to more than {_MAX_VALUES} values (anchors and "
+                           f"aliases repeat their content); write the netlist out plainly",
+                           SourceLoc(str(path), _line_at(text, alias.start()) if alias else 1))
+    if not isinstance(doc, Mapping):
+        raise NetlistError("a netlist is a YAML mapping with 'components:' (and optionally "
+                           "'parameters:', 'probes:', 'analysis:', 'include:')",
+                           SourceLoc(str(path), 1))
+    _check_schema(path, doc)
+    return doc
+
+
+def _parse_yaml(path: Path, text: str) -> Any:
+    from ruamel.yaml import YAML
+    from ruamel.yaml.error import MarkedYAMLError, YAMLError
+
     # ruamel's round-trip parser builds only mappings, sequences and scalars (no Python
     # objects from tags), and keeps the line of every node for the error messages
     parser = YAML(typ="rt")
     try:
-        doc = parser.load(text)
+        return parser.load(text)
     except MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
         what = (exc.problem or exc.context or "syntax error").strip()
@@ -213,34 +268,57 @@ def _read_yaml(path: Path) -> Any:
     except RecursionError:
         raise NetlistError("YAML error: lists or mappings are nested too deeply",
                            SourceLoc(str(path))) from None
-    except (YAMLError, LookupError, ValueError, TypeError) as exc:
+    except ValueError as exc:
+        if "digits" in str(exc):  # Python's guard against huge integer strings
+            long = _LONG_INT.search(text)
+            raise NetlistError("a number has thousands of digits; write it with an exponent "
+                               "(1e400) or as a plain size", SourceLoc(
+                                   str(path), _line_at(text, long.start()) if long else 0)) \
+                from None
+        raise NetlistError(f"YAML error: {type(exc).__name__}: {exc}. Check the values and "
+                           f"'!!' tags", SourceLoc(str(path))) from None
+    except (YAMLError, LookupError, TypeError) as exc:
         # ruamel's scalar constructors fail with bare IndexError/KeyError on e.g. '!!float'
         # with no value or '!!bool x'
         raise NetlistError(f"YAML error: {type(exc).__name__}: {exc}. Check the values and "
                            f"'!!' tags", SourceLoc(str(path))) from None
-    if _expanded_size(doc, {}) > _MAX_VALUES:
-        raise NetlistError(f"the YAML expands to more than {_MAX_VALUES} values (anchors and "
-                           f"aliases repeat their content); write the netlist out plainly",
-                           SourceLoc(str(path)))
-    if not isinstance(doc, Mapping):
-        raise NetlistError("a netlist is a YAML mapping with 'components:' (and optionally "
-                           "'parameters:', 'probes:', 'analysis:', 'include:')",
-                           SourceLoc(str(path), 1))
+
+
+def _check_schema(path: Path, doc: Any) -> None:
     errors = sorted(_schema_validator().iter_errors(_plain(doc)), key=lambda e: list(e.path))
-    if errors:
-        err = errors[0]
-        node, loc = doc, _loc(str(path), doc)
-        for part in err.path:
-            try:
-                loc = _loc(str(path), node, key=part) if isinstance(node, Mapping) else \
-                    _loc(str(path), node, index=part)
-                node = node[part]
-            except (KeyError, IndexError, TypeError):
-                break
-        where = "/".join(str(p) for p in err.path) or "top level"
-        raise NetlistError(f"does not match the netlist schema at {where}: {err.message}. "
-                           f"See circuitsim/netlist/schema.json.", loc)
-    return doc
+    if not errors:
+        return
+    err = errors[0]
+    node, loc = doc, _loc(str(path), doc)
+    for part in err.path:
+        try:
+            loc = _loc(str(path), node, key=part) if isinstance(node, Mapping) else \
+                _loc(str(path), node, index=part)
+            node = node[part]
+        except (KeyError, IndexError, TypeError):
+            break
+    where = "/".join(str(p) for p in err.path) or "top level"
+    raise NetlistError(f"does not match the netlist schema at {where}: {_schema_message(err)}. "
+                       f"See circuitsim/netlist/schema.json.", loc)
+
+
+def _schema_message(err) -> str:
+    """The schema's complaint without the offending value: the file may not be a netlist at
+    all (an include of a private file), and its content must not be echoed."""
+    kind = err.validator
+    if kind == "type":
+        want = err.validator_value
+        want = " or ".join(want) if isinstance(want, list) else want
+        return f"expected {want}, got {type(err.instance).__name__}"
+    if kind == "additionalProperties":
+        return err.message  # names the unexpected key, which the user needs to see
+    if kind == "required":
+        return err.message
+    if kind == "pattern":
+        return f"does not match the pattern {err.validator_value}"
+    if kind == "enum":
+        return f"must be one of {err.validator_value}"
+    return f"fails the '{kind}' rule"
 
 
 @dataclass
@@ -255,6 +333,8 @@ class RawNetlist:
     analysis: dict[str, tuple[Any, SourceLoc]] = field(default_factory=dict)
     title: str = ""
     path: str = ""
+    files: list[str] = field(default_factory=list)  # the netlist and its includes
+    root: str | None = None  # the folder tree includes and tables must lie in (None: any)
 
     def copy(self) -> RawNetlist:
         import copy
@@ -313,19 +393,68 @@ class RawNetlist:
 _Raw = RawNetlist
 
 
-def _gather(path: Path, raw: _Raw, stack: tuple[Path, ...]) -> None:
-    path = path.resolve()
+# Limits on what a netlist makes circuitsim read: a netlist received from someone else must not
+# exhaust memory (an include of /dev/zero, a fan-out of includes) or read files elsewhere.
+MAX_NETLIST_BYTES = 10 * 2**20
+MAX_TABLE_BYTES = 256 * 2**20
+MAX_INCLUDES = 200
+OUTSIDE_HINT = ("a netlist may read only files in its own folder tree (or in the repository "
+                "holding it); if you trust it, pass --allow-outside (CLI) or "
+                "allow_outside=True (load)")
+
+
+def trust_root(folder: Path) -> Path:
+    """The folder tree a netlist in ``folder`` may read: the repository (a folder with ``.git``
+    or ``pyproject.toml``) holding it, else its own folder. A netlist received by mail sits in
+    no repository and may read only beside and below itself; the examples of a project may read
+    the project's data."""
+    for d in (folder, *folder.parents):
+        if (d / ".git").exists() or (d / "pyproject.toml").exists():
+            return d
+    return folder
+
+
+def check_input_file(target: Path, root: str | None, what: str, loc: SourceLoc,
+                     limit: int, comp: str | None = None) -> Path:
+    """The resolved path of a file a netlist reads, after checking that it lies in ``root``
+    (None: anywhere), exists, is a regular file (not a folder, device or pipe) and is at
+    most ``limit`` bytes. Raises NetlistError at ``loc``; never reads the file."""
+    real = target.resolve()
+    if root is not None and not real.is_relative_to(root):
+        raise NetlistError(f"{what} '{target}' is outside {root}: "
+                           f"{OUTSIDE_HINT}", loc, comp)
+    try:
+        st = real.stat()
+    except OSError:
+        raise NetlistError(f"{what} '{target}' not found (looked in {target.parent})", loc,
+                           comp) from None
+    if stat.S_ISDIR(st.st_mode):
+        raise NetlistError(f"{what} '{target}' is a folder; name a file", loc, comp)
+    if not stat.S_ISREG(st.st_mode):
+        raise NetlistError(f"{what} '{target}' is not a regular file (a device or a pipe); "
+                           f"name a file", loc, comp)
+    if st.st_size > limit:
+        raise NetlistError(f"{what} '{target}' is {st.st_size / 2**20:.0f} MB, more than the "
+                           f"{limit / 2**20:.0f} MB a netlist may read", loc, comp)
+    return real
+
+
+def _gather(path: Path, raw: _Raw, stack: tuple[Path, ...], loc: SourceLoc | None = None
+            ) -> None:
+    path = check_input_file(path, None if not stack else raw.root, "included file" if stack
+                            else "netlist", loc or SourceLoc(str(path)), MAX_NETLIST_BYTES)
     if path in stack:
         chain = " -> ".join(p.name for p in (*stack, path))
-        raise NetlistError(f"include cycle: {chain}", SourceLoc(str(stack[-1])))
+        raise NetlistError(f"include cycle: {chain}; remove one of the includes", loc)
+    if len(raw.files) >= MAX_INCLUDES:
+        raise NetlistError(f"more than {MAX_INCLUDES} files are included (an include fans "
+                           f"out or repeats); include each file once", loc)
     doc = _read_yaml(path)
     sp = str(path)
-    for i, inc in enumerate(doc.get("include", []) or []):
-        target = (path.parent / inc)
-        if not target.exists():
-            raise NetlistError(f"included file '{inc}' not found (looked in {path.parent})",
-                               _loc(sp, doc["include"], index=i))
-        _gather(target, raw, (*stack, path))
+    raw.files.append(sp)
+    includes = doc.get("include", []) or []
+    for i, inc in enumerate(includes):
+        _gather(path.parent / inc, raw, (*stack, path), _loc(sp, includes, index=i))
     raw.title = str(doc.get("title", raw.title or path.stem))
     params = doc.get("parameters") or {}
     for k in params:
@@ -341,7 +470,18 @@ def _gather(path: Path, raw: _Raw, stack: tuple[Path, ...]) -> None:
         raw.analysis[str(k)] = (analysis[k], _loc(sp, analysis, key=k))
 
 
-def _parse_value(text: Any, loc: SourceLoc, what: str, comp: str | None = None) -> ex.Node:
+def _parse_value(text: Any, loc: SourceLoc, what: str, comp: str | None = None,
+                 unit: str | None = None) -> ex.Node:
+    """Parse a value; ``unit`` (the expected one, if known) decides a SPICE suffix that is also
+    a unit (``1F`` on a capacitor is a farad; see ``units.spice_value``)."""
+    if isinstance(text, str):
+        try:
+            target = unit_info(unit)[1] if unit is not None else None
+            plain = spice_value(text, target)
+        except ValueError as exc:
+            raise ParameterError(f"{what}: {exc}", loc, comp) from None
+        if plain is not None:
+            return ex.Node("num", float(plain))
     if isinstance(text, bool):
         raise ParameterError(f"{what} must be a number or expression, not {text}", loc, comp)
     if isinstance(text, (int, float)):
@@ -367,7 +507,32 @@ def _carries_units(node: ex.Node, dims: Mapping[str, Dim | None]) -> bool:
     return any(_carries_units(a, dims) for a in node.args)
 
 
+# Names a netlist may not give a parameter: each already means something in an expression, and
+# letting the user's value win in one place and the built-in meaning in another would give a
+# silent wrong answer.
+RESERVED_PARAMS = {"pi": "the constant 3.14159... in every expression",
+                   "t": "the simulated time in behavioural expressions",
+                   "time": "the time column of every output table"}
+_IDENT = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
+# characters a node name may not hold: they would split or shift a CSV header, or make the
+# name impossible to write in a probe
+_BAD_NODE_CHARS = re.compile(r"[,\"'\s;=]")
+
+
+def _check_param_name(name: str, loc: SourceLoc) -> None:
+    if name in RESERVED_PARAMS:
+        raise ParameterError(f"parameter name '{name}' is reserved: it is "
+                             f"{RESERVED_PARAMS[name]}; rename the parameter (e.g. "
+                             f"'{name}_')", loc)
+    if not _IDENT.fullmatch(name):
+        raise ParameterError(f"parameter name '{name}' is not a plain name (letters, digits, "
+                             f"'_'; no dots): a dotted name reads as a circuit quantity such as "
+                             f"'R1.v'; rename it", loc)
+
+
 def _order_params(raw: _Raw) -> dict[str, GlobalParam]:
+    for k, (_, loc) in raw.params.items():
+        _check_param_name(k, loc)
     nodes = {k: _parse_value(v, loc, f"parameter '{k}'") for k, (v, loc) in raw.params.items()}
     order: list[str] = []
     state: dict[str, int] = {}
@@ -416,16 +581,18 @@ class _Builder:
     """Turns raw component entries into ComponentSpecs, checking names, units, validity."""
 
     def __init__(self, params: Mapping[str, GlobalParam], nodes: dict[str, tuple[str,
-                 SourceLoc]]):
+                 SourceLoc]], root: str | None = None):
         self.params = params
+        self.root = root
         self.env = {k: p.value for k, p in params.items()}
         self.dims = {k: p.dim for k, p in params.items()}
         self.nodes = nodes
         self.n_tables = 0
+        self.table_files: list[str] = []
 
     def value(self, raw: Any, loc: SourceLoc, comp: str, key: str, param: Param,
               unit: str, local: Mapping[str, Value] | None = None) -> Value:
-        node = _parse_value(raw, loc, f"parameter '{key}'", comp)
+        node = _parse_value(raw, loc, f"parameter '{key}'", comp, unit)
         for dep in ex.names(node):
             if dep not in self.params:
                 raise ParameterError(f"parameter '{key}' refers to unknown parameter '{dep}'"
@@ -442,7 +609,8 @@ class _Builder:
                 raise ParameterError(f"parameter '{key}': {explain_mismatch(dim, target, unit)}",
                                      loc, comp)
         elif dim is not None and unit == "1" and dim.dims and _carries_units(node, self.dims):
-            raise ParameterError(f"parameter '{key}' must be dimensionless, got {dim}", loc, comp)
+            raise ParameterError(f"parameter '{key}' must be dimensionless, got "
+                                 f"{describe(dim)}", loc, comp)
         why = param.violation(val)
         if why:
             raise ParameterError(f"{key} = {val:g} [{unit}]: {why} ({param.doc})", loc, comp)
@@ -613,8 +781,10 @@ class _Builder:
         from circuitsim.netlist.tables import read_column
 
         file = Path(path).parent / str(body["file"])
+        check_input_file(file, self.root, "table file", loc, MAX_TABLE_BYTES, comp)
         x, y = read_column(file, str(body["column"]), str(body.get("time", "time")), loc, comp)
         self.n_tables += 1
+        self.table_files.append(str(file))
         return TableData(x, y, f"{file.name}:{body['column']}")
 
     def bind_node(self, node: str, domain: str, loc: SourceLoc, comp: str, port: str) -> None:
@@ -635,15 +805,18 @@ class _Builder:
         self.nodes.setdefault(node, (domain, loc))
 
 
-def load(path: str | Path) -> Netlist:
+def load(path: str | Path, *, allow_outside: bool = False) -> Netlist:
     """Read, validate and type a netlist file (with its includes).
 
-    Raises NetlistError / ParameterError naming file, line and component.
+    Includes and table files must lie in the netlist's folder tree unless ``allow_outside``
+    (a netlist from someone else must not read your files). Raises NetlistError /
+    ParameterError naming file, line and component.
     """
     import circuitsim_components  # noqa: F401 - fills the registries
 
     path = Path(path)
     raw = _Raw(path=str(path))
+    raw.root = None if allow_outside else str(trust_root(path.resolve().parent))
     _gather(path, raw, ())
     return build(raw)
 
@@ -655,7 +828,7 @@ def build(raw: RawNetlist) -> Netlist:
     path = Path(raw.path)
     params = _order_params(raw)
     nodes: dict[str, tuple[str, SourceLoc]] = {}
-    b = _Builder(params, nodes)
+    b = _Builder(params, nodes, raw.root)
     comps: list[ComponentSpec] = []
     seen: dict[str, SourceLoc] = {}
     for entry, loc, file in raw.comps:
@@ -667,12 +840,41 @@ def build(raw: RawNetlist) -> Netlist:
         comps.append(b.component(entry, loc, file))
     if not comps:
         raise NetlistError("the netlist has no components", SourceLoc(str(path), 1))
+    _check_node_names(nodes, seen)
+    probes = _probes(raw)
+    analysis = _analysis(raw, b)
+    tables = [t for c in comps for t in c.tables]
+    if tables:
+        comps = _index_tables(comps)
+    return Netlist(str(path), raw.title, params, tuple(comps), probes, analysis, nodes, raw,
+                   (*dict.fromkeys(raw.files), *dict.fromkeys(b.table_files)))
+
+
+def _check_node_names(nodes: Mapping[str, tuple[str, SourceLoc]],
+                      comps: Mapping[str, SourceLoc]) -> None:
+    """Refuse node names that would read as something else in a probe or a CSV header."""
     for n, (_, loc) in nodes.items():
-        if n in seen:
+        if n in comps:
             raise NetlistError(f"'{n}' names both a node and a component; rename one",
                                loc, n)
+        head = n.split(".", 1)[0]
+        if "." in n and head in comps:
+            # 'R1.n.v' would mean both this node's voltage and the voltage at R1's port n
+            raise NetlistError(f"node name '{n}' reads as a port of component '{head}' "
+                               f"(probes write ports as COMPONENT.PORT); rename the node, e.g. "
+                               f"'{n.replace('.', '_')}'", loc)
+        if _BAD_NODE_CHARS.search(n) or not n:
+            raise NetlistError(f"node name {n!r} holds a space, comma, quote, ';' or '=': it "
+                               f"could not be named in a probe or a CSV header; use letters, "
+                               f"digits and '_'", loc)
+
+
+def _probes(raw: _Raw) -> dict[str, Probe]:
     probes = {}
     for name, (text, loc) in raw.probes.items():
+        if name == "time":
+            raise NetlistError("probe name 'time' is reserved for the time column of the "
+                               "output; rename the probe (e.g. 't_probe')", loc)
         try:
             node = ex.parse(str(text), allow_unit=False)
         except ex.ExprError as exc:
@@ -682,11 +884,7 @@ def build(raw: RawNetlist) -> Netlist:
         except NetlistError as exc:
             raise NetlistError(f"probe '{name}': {exc.bare}", loc) from None
         probes[name] = Probe(name, node, str(text), loc)
-    analysis = _analysis(raw, b)
-    tables = [t for c in comps for t in c.tables]
-    if tables:
-        comps = _index_tables(comps)
-    return Netlist(str(path), raw.title, params, tuple(comps), probes, analysis, nodes, raw)
+    return probes
 
 
 def _free_symbol(name: str):
@@ -717,4 +915,25 @@ def _analysis(raw: _Raw, b: _Builder) -> Analysis:
             kw[key] = val
     if kw.get("stop", 1.0) <= 0:
         raise ParameterError("analysis stop time must be positive", raw.analysis["stop"][1])
+    points = output_points(kw.get("stop", Analysis.stop), kw.get("step"))
+    if points > MAX_OUTPUT_POINTS:
+        raise ParameterError(too_many_points(points), raw.analysis.get(
+            "step", raw.analysis.get("stop", (None, SourceLoc(raw.path))))[1])
     return Analysis(**kw)
+
+
+# Output points a run may ask for: 2e7 points hold 160 MB per series; a 1 fs step over a
+# second would ask for 1e15 (petabytes) and must be refused before anything is allocated.
+MAX_OUTPUT_POINTS = 20_000_000
+
+
+def output_points(stop: float, step: float | None) -> float:
+    """Output points of a run of ``stop`` [s] at ``step`` [s] (default: stop / 20000)."""
+    return stop / step if step else 20_000.0
+
+
+def too_many_points(points: float) -> str:
+    return (f"stop / step asks for {points:.3g} output points, more than "
+            f"{MAX_OUTPUT_POINTS:.0e}; raise the output step (analysis: step) or shorten "
+            f"the run (a waveform's rise time needs no output step of its own: the integrator "
+            f"steps through it)")

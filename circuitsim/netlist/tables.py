@@ -29,7 +29,7 @@ def read_column(file: Path, column: str, time: str = "time", loc: SourceLoc | No
         if name not in header:
             raise NetlistError(f"data file '{file}' has no column '{name}' (columns: "
                                f"{', '.join(header)})", where, comp)
-    arr = numeric_rows(file, header, rows, error)
+    arr = numeric_rows(file, header, rows, error, echo=False)
     x, y = arr[:, header.index(time)], arr[:, header.index(column)]
     if len(x) < 2:
         raise NetlistError(f"data file '{file}' needs at least two rows", where, comp)

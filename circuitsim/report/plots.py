@@ -5,40 +5,70 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from circuitsim.files import atomic_write
 
+MAX_PANELS = 8
 
-def plot(res, path: str, names: list[str] | None = None) -> None:
+
+def _plain(text: str) -> str:
+    """Text shown as written: a '$' would start matplotlib's mathtext and may not parse."""
+    return str(text).replace("$", r"\$")
+
+
+def _pyplot():
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    names = list(names or res.probes or res.states)[:8]
-    fig, axes = plt.subplots(len(names), 1, figsize=(8, 2.2 * len(names) + 0.6), sharex=True,
-                             squeeze=False)
-    for ax, name in zip(axes[:, 0], names, strict=True):
-        ax.plot(res.t, res[name], lw=0.7)
+    return plt
+
+
+def plot(res, path: str, names: list[str] | None = None, window: float | None = None) -> None:
+    """One panel per series (at most 8; the figure says how many were left out) against time;
+    with ``window`` (a fraction of the run), a second column zooms on the steady window."""
+    plt = _pyplot()
+    every = list(names or res.probes or res.states)
+    shown = every[:MAX_PANELS]
+    cols = 2 if window else 1
+    fig, axes = plt.subplots(len(shown), cols, figsize=(8 + 4 * (cols - 1),
+                             2.2 * len(shown) + 0.8), sharex="col", squeeze=False)
+    zoom = res.window(window) if window else None
+    for row, name in enumerate(shown):
         unit = res.model.meta["units"].get(name, "")
-        ax.set_ylabel(f"{name}" + (f" [{unit}]" if unit else ""))
-        ax.grid(alpha=0.3)
+        for col in range(cols):
+            ax = axes[row, col]
+            mask = zoom if col == 1 else slice(None)
+            ax.plot(res.t[mask], res[name][mask], lw=0.7)
+            ax.grid(alpha=0.3)
+        axes[row, 0].set_ylabel(_plain(name) + (f" [{_plain(unit)}]" if unit else ""))
     axes[-1, 0].set_xlabel("time [s]")
-    fig.suptitle(res.model.netlist.title)
+    if cols == 2:
+        axes[0, 1].set_title(f"steady window (last {window:.0%})", fontsize=9)
+        axes[-1, 1].set_xlabel("time [s]")
+    title = _plain(res.model.netlist.title)
+    if len(every) > len(shown):
+        title += f"\n({len(every) - len(shown)} more series not shown: choose with --probe)"
+    fig.suptitle(title)
     fig.tight_layout()
     atomic_write(path, lambda p: fig.savefig(p, dpi=110, format="png"))
     plt.close(fig)
 
 
 def _bode(res, path: str) -> None:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
+    """Bode plot: magnitude in dB, phase in degrees unwrapped along the frequency axis."""
+    plt = _pyplot()
     fig, (a1, a2) = plt.subplots(2, 1, figsize=(7, 5), sharex=True)
-    a1.loglog(res.frequency, res.magnitude)
-    a1.set_ylabel(f"|{res.output} / {res.input}|")
-    a2.semilogx(res.frequency, res.phase)
+    mag = np.asarray(res.magnitude, float)
+    with np.errstate(divide="ignore"):
+        db = 20 * np.log10(mag)
+    a1.semilogx(res.frequency, db)
+    a1.set_ylabel(_plain(f"|{res.output} / {res.input}| [dB]"))
+    # numpy.unwrap removes the 360° jumps of a phase reported in (-180, 180]
+    phase = np.degrees(np.unwrap(np.radians(np.asarray(res.phase, float))))
+    a2.semilogx(res.frequency, phase)
     a2.set_ylabel("phase [deg]")
     a2.set_xlabel("frequency [Hz]")
     for a in (a1, a2):
@@ -48,31 +78,38 @@ def _bode(res, path: str) -> None:
     plt.close(fig)
 
 
+def _log_scale(values: list[float]) -> bool:
+    """Log when every value is positive and they span more than a decade."""
+    v = np.asarray([x for x in values if np.isfinite(x)], float)
+    return bool(v.size > 1 and np.all(v > 0) and v.max() / v.min() > 10)
+
+
 def plot_sweep(rows: list[dict[str, Any]], x: str, y: str, path: str,
-               logx: bool = True, logy: bool = True) -> None:
-    """Metric ``y`` against swept parameter ``x``, one line per netlist."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    from circuitsim.files import atomic_write
-
+               logx: bool | None = None, logy: bool | None = None) -> None:
+    """Metric ``y`` (any column) against swept parameter ``x``, one line per netlist; each
+    axis is logarithmic when its values are positive and span more than a decade (``None``),
+    or as asked."""
+    plt = _pyplot()
     fig, ax = plt.subplots(figsize=(7, 4.2))
+    xs_all: list[float] = []
+    ys_all: list[float] = []
     for net in dict.fromkeys(r["netlist"] for r in rows):
         pts = sorted((float(r[x]), float(r[y])) for r in rows
                      if r["netlist"] == net and r.get(y) not in (None, ""))
         if pts:
             xs, ys = zip(*pts, strict=True)
-            ax.plot(xs, ys, "o-", label=Path(net).stem)
-    if logx:
+            xs_all += xs
+            ys_all += ys
+            ax.plot(xs, ys, "o-", label=_plain(Path(net).stem))
+    if logx if logx is not None else _log_scale(xs_all):
         ax.set_xscale("log")
-    if logy:
+    if logy if logy is not None else _log_scale(ys_all):
         ax.set_yscale("log")
-    ax.set_xlabel(x)
-    ax.set_ylabel(y)
+    ax.set_xlabel(_plain(x))
+    ax.set_ylabel(_plain(y))
     ax.grid(alpha=0.3, which="both")
-    ax.legend()
+    if xs_all:
+        ax.legend()
     fig.tight_layout()
     atomic_write(path, lambda p: fig.savefig(p, dpi=110, format="png"))
     plt.close(fig)

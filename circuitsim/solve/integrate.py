@@ -9,7 +9,7 @@ decimated, so memory stays bounded.
 from __future__ import annotations
 
 import itertools
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 
 import numpy as np
 
@@ -33,8 +33,8 @@ def simulate(model, stop: float | None = None, params: Mapping[str, float] | Non
              step: float | None = None, t_eval: np.ndarray | None = None,
              rtol: float | None = None, atol: float | None = None,
              max_step: float | None = None, init: str | None = None,
-             chunk: int = 50_000, keep_after: float | None = None, decimate: int = 1
-             ) -> SimResult:
+             chunk: int = 50_000, keep_after: float | None = None, decimate: int = 1,
+             progress: Callable[[float], None] | None = None) -> SimResult:
     """Integrate from t = 0 to ``stop`` [s].
 
     Parameters
@@ -47,6 +47,8 @@ def simulate(model, stop: float | None = None, params: Mapping[str, float] | Non
     chunk : output points per integrator call; memory is bounded by chunk when decimating.
     keep_after : [s] keep every output point after this time, and only every ``decimate``-th
         before it (for long runs whose end is analysed).
+    progress : called with the simulated time [s] after each integrator call (at every
+        waveform corner and every ``chunk`` output points); for a progress bar.
     """
     import sksundae as sun
 
@@ -161,6 +163,8 @@ def simulate(model, stop: float | None = None, params: Mapping[str, float] | Non
                 detail = _failure(model, sol, t_fail, rtol, atol)
                 break
             y, yp, t_now = got_y[-1], got_yp[-1], float(got_t[-1])
+            if progress is not None:
+                progress(t_now)
         if status is not Status.OK:
             break
         if b < stop:  # a waveform corner: restart with consistent derivatives

@@ -97,9 +97,10 @@ def operating_point(model, params: Mapping[str, float] | None = None, t: float =
                       f"starting from rest (init: rest), or ramp the sources (source stepping)")
 
 
-def probe_values(model, op: OperatingPoint, params: Mapping[str, float] | None = None
-                 ) -> dict[str, float]:
-    """Probes at the operating point, averaged over a shaft turn like the residual."""
+def probe_values(model, op: OperatingPoint, params: Mapping[str, float] | None = None,
+                 t: float = 0.0) -> dict[str, float]:
+    """Probes at the operating point (sources at time ``t`` [s]), averaged over a shaft turn
+    like the residual."""
     _, _, _, observe, _ = model.fns
     p = model.param_vector(params)
     angles, samples = _angles(model)
@@ -108,7 +109,7 @@ def probe_values(model, op: OperatingPoint, params: Mapping[str, float] | None =
         Y[k] += samples
     YP = np.repeat(op.yp[:, None], len(samples), axis=1)
     with np.errstate(all="ignore"):
-        vals = observe(0.0, Y, YP, p)
+        vals = observe(t, Y, YP, p)
     names = model.meta["observed"][: model.meta["n_probes"]]
     return {n: float(np.mean(np.broadcast_to(np.asarray(v, float), (len(samples),))))
             for n, v in zip(names, vals, strict=False)}

@@ -119,6 +119,19 @@ class SimResult:
             return signal.dominant_ripple(self.t[m], self[name][m])
         return signal.harmonic(self.t[m], self[name][m], near=frequency)
 
+    def to_dataframe(self, names: list[str] | None = None):
+        """A pandas DataFrame indexed by time [s], one column per named series (default: the
+        probes, else the states). Needs pandas (not a dependency of circuitsim)."""
+        try:
+            import pandas as pd
+        except ImportError:
+            raise ImportError("to_dataframe needs pandas: pip install pandas") from None
+        names = list(names or self.probes or self.states)
+        frame = pd.DataFrame({n: self[n] for n in names},
+                             index=pd.Index(self.t, name="time"))
+        frame.attrs["units"] = {n: self.model.meta["units"].get(n, "") for n in names}
+        return frame
+
     def to_csv(self, path: str | os.PathLike, names: list[str] | None = None) -> None:
         """Write time and the named series (default: probes, else states), atomically."""
         names = list(names or self.probes or self.states)

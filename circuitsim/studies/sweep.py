@@ -32,15 +32,19 @@ def parse_range(text: str, unit: str | None = None, dim=None) -> list[float]:
     """Values of a sweep axis: ``1e-9..1e-1:log:9``, ``0..1:lin:5``, or ``1,2,5`` [SI].
 
     A value written with a unit is checked against ``unit`` (a unit string) or ``dim`` (a
-    units.Dim): ``10k`` is not 10 000 but 10 Boltzmann constants, and is refused for Hz.
+    units.Dim); a SPICE multiplier scales the number (``10k`` is 10 000; see
+    ``units.spice_value`` for ``1F`` and ``1M``).
     """
     from circuitsim.netlist import expr as ex
-    from circuitsim.units import compatible, explain_mismatch, unit_info
+    from circuitsim.units import compatible, explain_mismatch, spice_value, unit_info
 
     target = dim if dim is not None else (unit_info(unit)[1] if unit else None)
 
     def num(s: str) -> float:
         try:
+            plain = spice_value(s, target)
+            if plain is not None:
+                return float(plain)
             node = ex.parse(s.strip())
             if ex.names(node):
                 raise ex.ExprError("names are not allowed here", s, 0)
@@ -174,27 +178,111 @@ def _worker(model, run: Run, metrics: Metrics) -> dict[str, Any]:
     return _run_one(cached, run, metrics)
 
 
-def _read_done(path: Path) -> tuple[list[dict[str, Any]], list[str]]:
+class SweepError(CircuitsimError):
+    """A sweep table cannot be resumed as asked (other settings, no settings file)."""
+
+
+# A run whose worker process died (killed, out of memory, a crash in native code) is sent
+# again this many times before it is written down as 'crashed'.
+RETRIES = 2
+
+
+def settings_path(out: Path) -> Path:
+    """Where a table's settings live: beside it, ``TABLE.csv.settings.json``."""
+    return out.with_name(out.name + ".settings.json")
+
+
+def _digest(files: Sequence[str]) -> str:
+    import hashlib
+
+    h = hashlib.sha256()
+    for f in files:
+        h.update(Path(f).read_bytes())
+    return h.hexdigest()[:16]
+
+
+def _settings(models: Mapping[str, Any], grid: Mapping[str, Sequence[float]], mode: str,
+              metrics: Metrics, stop: float | None, options: Mapping[str, Any]) -> dict:
+    """What makes two tables comparable: the netlists' content, the axes, the run settings
+    (not the grid values: a resumed sweep may add points)."""
+    from dataclasses import asdict
+
+    return {"netlists": {p: _digest(m.netlist.inputs) for p, m in models.items()},
+            "axes": list(grid), "mode": mode, "stop": stop,
+            "metrics": {k: list(v) if isinstance(v, tuple) else v
+                        for k, v in asdict(metrics).items()},
+            "options": {k: v for k, v in sorted(options.items())}}
+
+
+def _check_settings(out: Path, settings: dict) -> None:
+    import json
+
+    side = settings_path(out)
+    if not side.exists():
+        raise SweepError(f"{out}: no settings file ({side.name}) beside the table, so a resume "
+                         f"cannot tell whether it was made with the same netlists and options; "
+                         f"run again without --resume")
+    try:
+        old = json.loads(side.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        old = None
+    if old != json.loads(json.dumps(settings)):
+        diff = sorted(k for k in settings if not isinstance(old, dict) or
+                      old.get(k) != json.loads(json.dumps(settings[k])))
+        raise SweepError(f"{out} was made with other settings ({', '.join(diff) or 'all'} "
+                         f"differ: netlist content, axes, stop time, metrics or solver "
+                         f"options); resuming would mix two sweeps. Run without --resume, or "
+                         f"write to another --out")
+
+
+def _read_done(path: Path) -> tuple[list[dict[str, Any]], list[str], bool]:
+    """Rows of a table, its columns, and whether a torn last row (a kill mid-write) was cut."""
     if not path.exists() or path.stat().st_size == 0:
-        return [], []
-    with open(path, newline="", encoding="utf-8") as fh:
-        reader = csv.DictReader(fh)
-        rows = [dict(r) for r in reader]
-        return rows, list(reader.fieldnames or [])
+        return [], [], False
+    text = path.read_text(encoding="utf-8")
+    torn = not text.endswith("\n")
+    if torn:  # the last line was cut mid-write: that run is not done
+        text = text[:text.rfind("\n") + 1]
+    reader = csv.DictReader(text.splitlines(keepends=True))
+    fields = list(reader.fieldnames or [])
+    rows = []
+    for r in reader:
+        if None in r or any(v is None for v in r.values()):  # too many or too few cells
+            torn = True
+            continue
+        rows.append(dict(r))
+    return rows, fields, torn
 
 
-def _run_key_from_row(row: Mapping[str, Any], names: Sequence[str]) -> tuple:
-    return (row["netlist"], *sorted((k, _fmt(float(row[k]))) for k in names))
+def _run_key_from_row(row: Mapping[str, Any], names: Sequence[str]) -> tuple | None:
+    try:
+        return (row["netlist"], *sorted((k, _fmt(float(row[k]))) for k in names))
+    except (KeyError, TypeError, ValueError):
+        return None
 
 
 class _Writer:
     """Appends rows to a CSV as they arrive; the header grows a column when a row needs one
     (then the file is rewritten once, atomically)."""
 
-    def __init__(self, path: Path | None, existing: list[dict], fields: list[str]):
+    def __init__(self, path: Path | None, existing: list[dict], fields: list[str],
+                 rewrite: bool = False):
         self.path = path
         self.rows = list(existing)
         self.fields = list(fields)
+        if path is not None and rewrite:
+            self._rewrite()
+
+    def _rewrite(self) -> None:
+        from circuitsim.files import atomic_write
+
+        def write(tmp: str) -> None:
+            with open(tmp, "w", newline="", encoding="utf-8") as fh:
+                w = csv.DictWriter(fh, self.fields)
+                w.writeheader()
+                w.writerows(self.rows)
+
+        atomic_write(self.path, write)  # type: ignore[arg-type]
 
     def add(self, row: dict[str, Any]) -> None:
         self.rows.append(row)
@@ -203,17 +291,52 @@ class _Writer:
         new = [k for k in row if k not in self.fields]
         if new or not self.path.exists():
             self.fields += new
-            tmp = self.path.with_name(f".{self.path.name}.tmp")
-            with open(tmp, "w", newline="", encoding="utf-8") as fh:
-                w = csv.DictWriter(fh, self.fields)
-                w.writeheader()
-                w.writerows(self.rows)
-            os.replace(tmp, self.path)
+            self._rewrite()
             return
         with open(self.path, "a", newline="", encoding="utf-8") as fh:
             csv.DictWriter(fh, self.fields).writerow(row)
             fh.flush()
             os.fsync(fh.fileno())
+
+
+def _compile_all(paths: Sequence[str | Path], grid: Mapping[str, Sequence[float]],
+                 points: list[dict[str, float]], allow_outside: bool) -> dict[str, Any]:
+    from circuitsim.compiler.model import compile as compile_model
+    from circuitsim.netlist.load import load
+
+    models = {}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for p in paths:
+            models[str(p)] = compile_model(load(p, allow_outside=allow_outside))
+    for name in grid:
+        for model in models.values():
+            model.param_values({name: points[0][name]})  # unknown names fail before any run
+    return models
+
+
+def _open_table(out: Path | None, resume: bool, settings: dict, axes: list[str]
+                ) -> tuple[_Writer, set[tuple]]:
+    """The writer for ``out`` and the keys of the runs it already holds. On resume, the
+    settings must match, a torn last row is dropped and crashed runs are run again."""
+    import json
+
+    from circuitsim.files import atomic_write
+
+    if out is None:
+        return _Writer(None, [], ["netlist", *axes]), set()
+    if resume and out.exists():
+        _check_settings(out, settings)
+        rows, fields, torn = _read_done(out)
+        keep = [r for r in rows if r.get("status") != "crashed" and
+                _run_key_from_row(r, axes) is not None]
+        writer = _Writer(out, keep, fields or ["netlist", *axes],
+                         rewrite=torn or len(keep) < len(rows))
+        return writer, {_run_key_from_row(r, axes) for r in keep}  # type: ignore[misc]
+    if out.exists():
+        out.unlink()
+    atomic_write(settings_path(out), json.dumps(settings, indent=1) + "\n")
+    return _Writer(out, [], ["netlist", *axes]), set()
 
 
 def sweep(netlists: str | Path | Sequence[str | Path],
@@ -222,7 +345,7 @@ def sweep(netlists: str | Path | Sequence[str | Path],
           executor: Executor | None = None, jobs: int | None = None,
           out: str | Path | None = None, resume: bool = False,
           progress: Callable[[int, int, dict], None] | None = None,
-          **sim_options: Any) -> list[dict[str, Any]]:
+          allow_outside: bool = False, **sim_options: Any) -> list[dict[str, Any]]:
     """Run every netlist at every grid point; return one row (a dict) per run.
 
     Parameters
@@ -232,73 +355,129 @@ def sweep(netlists: str | Path | Sequence[str | Path],
     mode : 'product' (Cartesian) or 'zip'.
     metrics : what each row reports (default: every probe, dominant ripple, energy audit).
     executor : any concurrent.futures.Executor (e.g. ``dask.distributed.Client(...)
-        .get_executor()``); default: a local process pool of ``jobs`` workers (1: in-process).
-    out : CSV file; rows are appended as runs finish. ``resume`` skips runs already in it.
+        .get_executor(retries=2)``, whose scheduler then retries the tasks of a lost worker);
+        default: a local process pool of ``jobs`` workers (1: in-process). A run whose worker
+        dies is sent again up to ``RETRIES`` times before it becomes a 'crashed' row.
+    out : CSV file; rows are appended as runs finish, the settings are kept beside it
+        (``settings_path``). ``resume`` skips runs already in it, runs crashed ones again,
+        drops a torn last row, and refuses (SweepError) a table made with other settings.
     sim_options : passed to ``CompiledModel.simulate`` (rtol, atol, step, init, ...).
     """
-    from circuitsim.compiler.model import compile as compile_model
-    from circuitsim.netlist.load import load
-
     paths = [netlists] if isinstance(netlists, (str, Path)) else list(netlists)
     metrics = metrics or Metrics()
-    models = {}
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        for p in paths:
-            models[str(p)] = compile_model(load(p))
-    points = grid_points(grid or {}, mode)
-    for name in (grid or {}):
-        for model in models.values():
-            model.param_values({name: points[0][name]})  # unknown names fail before any run
+    grid = dict(grid or {})
+    points = grid_points(grid, mode)
+    models = _compile_all(paths, grid, points, allow_outside)
     runs = [Run(str(p), pt, stop, dict(sim_options)) for p in paths for pt in points]
-    out_path = Path(out) if out else None
-    existing, fields = _read_done(out_path) if (out_path and resume) else ([], [])
-    if out_path and not resume and out_path.exists():
-        out_path.unlink()
-    done = {_run_key_from_row(r, list(grid or {})) for r in existing if r.get("netlist")}
+    settings = _settings(models, grid, mode, metrics, stop, sim_options)
+    writer, done = _open_table(Path(out) if out else None, resume, settings, list(grid))
     todo = [r for r in runs if r.key() not in done]
-    writer = _Writer(out_path, existing, fields or ["netlist", *(grid or {})])
-    total = len(runs)
-    count = total - len(todo)
-    own_pool = None
-    if executor is None and (jobs or 1) > 1 and len(todo) > 1:
-        own_pool = ProcessPoolExecutor(max_workers=jobs)
-        executor = own_pool
-    try:
-        if executor is None:
-            for r in todo:
-                row = _run_one(models[r.netlist], r, metrics)
-                writer.add(row)
-                count += 1
-                if progress:
-                    progress(count, total, row)
-        else:
-            futures = {executor.submit(_worker, models[r.netlist], r, metrics): r for r in todo}
-            for fut in as_completed(futures):
-                r = futures[fut]
-                try:
-                    row = fut.result()
-                except Exception as exc:  # noqa: BLE001 - a worker crash is one failed row
-                    row = {"netlist": r.netlist, **r.params, "status": "crashed",
-                           "message": f"{type(exc).__name__}: {exc}"}
-                writer.add(row)
-                count += 1
-                if progress:
-                    progress(count, total, row)
-    finally:
-        if own_pool is not None:
-            own_pool.shutdown(cancel_futures=True)
+    state = {"count": len(runs) - len(todo), "total": len(runs)}
+
+    def finished(row: dict[str, Any]) -> None:
+        writer.add(row)
+        state["count"] += 1
+        if progress:
+            progress(state["count"], state["total"], row)
+
+    if executor is None and ((jobs or 1) <= 1 or len(todo) <= 1):
+        for r in todo:
+            finished(_run_one(models[r.netlist], r, metrics))
+    else:
+        _execute(todo, models, metrics, executor, jobs or 1, finished)
+    return _ordered(runs, writer.rows, list(grid))
+
+
+def _ordered(runs: list[Run], rows: list[dict], axes: list[str]) -> list[dict[str, Any]]:
     order = {r.key(): i for i, r in enumerate(runs)}
-    rows = [dict(r) for r in writer.rows]
-    for r in rows:  # rows read back from a resumed file are strings: make numbers numeric
+    out = [dict(r) for r in rows]
+    for r in out:  # rows read back from a resumed file are strings: make numbers numeric
         for k, v in r.items():
             if isinstance(v, str) and k not in ("netlist", "status", "message"):
                 try:
                     r[k] = float(v)
                 except ValueError:
                     pass
-    rows.sort(key=lambda r: order.get(_run_key_from_row(r, list(grid or {})), len(order)))
-    return rows
+    out.sort(key=lambda r: order.get(_run_key_from_row(r, axes), len(order)))
+    return out
+
+
+def _worker_init(parent: int) -> None:
+    """In each pool worker: Ctrl-C is the parent's to handle (no worker tracebacks), and the
+    worker ends when its parent is gone (a killed sweep leaves no orphans)."""
+    import signal
+    import threading
+
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    # a SIGTERM from _stop_pool must end the worker at once, also inside the integrator's C
+    # code (a Python handler inherited from the parent would wait for it to return)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+
+    def watch() -> None:
+        while True:
+            time.sleep(0.5)
+            if os.getppid() != parent:
+                os._exit(1)
+
+    threading.Thread(target=watch, daemon=True).start()
+
+
+def _new_pool(jobs: int) -> ProcessPoolExecutor:
+    return ProcessPoolExecutor(max_workers=jobs, initializer=_worker_init,
+                               initargs=(os.getpid(),))
+
+
+def _stop_pool(pool: ProcessPoolExecutor) -> None:
+    """Stop at once: cancel what has not started and end the workers (a run in progress
+    would otherwise hold the exit for its whole duration)."""
+    procs = list((getattr(pool, "_processes", None) or {}).values())
+    pool.shutdown(wait=False, cancel_futures=True)
+    for p in procs:
+        if p.is_alive():
+            p.terminate()
+    for p in procs:
+        p.join(timeout=2)
+        if p.is_alive():
+            p.kill()
+            p.join(timeout=2)
+
+
+def _execute(todo: list[Run], models: Mapping[str, Any], metrics: Metrics,
+             executor: Executor | None, jobs: int, finished: Callable[[dict], None]) -> None:
+    """Run ``todo`` on ``executor`` (default: an own process pool), sending a run again when
+    its worker died; a pool broken by a dead worker is replaced."""
+    from concurrent.futures.process import BrokenProcessPool
+
+    own = executor is None
+    pool = _new_pool(jobs) if own else executor
+    tries = {r.key(): 0 for r in todo}
+    pending = list(todo)
+    try:
+        while pending:
+            futures = {pool.submit(_worker, models[r.netlist], r, metrics): r  # type: ignore
+                       for r in pending}
+            pending = []
+            broken = False
+            for fut in as_completed(futures):
+                r = futures[fut]
+                try:
+                    finished(fut.result())
+                    continue
+                except Exception as exc:  # noqa: BLE001 - a worker crash is a retry, then a row
+                    broken = broken or isinstance(exc, BrokenProcessPool)
+                    tries[r.key()] += 1
+                    if tries[r.key()] <= RETRIES:
+                        pending.append(r)
+                        continue
+                    finished({"netlist": r.netlist, **r.params, "status": "crashed",
+                              "message": f"{type(exc).__name__}: {exc} (after {RETRIES} "
+                                         f"retries)"})
+            if broken and own and pending:
+                _stop_pool(pool)  # type: ignore[arg-type]
+                pool = _new_pool(jobs)
+    finally:
+        if own:
+            _stop_pool(pool)  # type: ignore[arg-type]
 
 
 def progress_bar(stream=sys.stderr) -> Callable[[int, int, dict], None]:

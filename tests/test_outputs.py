@@ -1,0 +1,212 @@
+"""Outputs never destroy inputs, never leave half files or temporaries, and every I/O fault
+ends with a message and a documented exit code (issue 16): 2 for a command line that names a
+wrong output, 3 for an output that cannot be written, 130 for Ctrl-C.
+
+Faults are injected for real: /dev/full (ENOSPC), a file-size limit (EFBIG), a read-only
+folder, SIGINT sent to a running command.
+"""
+
+from __future__ import annotations
+
+import csv
+import os
+import signal
+import stat
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+
+from circuitsim.cli.main import main
+from circuitsim.files import OutputError, atomic_write
+
+from conftest import NETLISTS
+
+RC = NETLISTS / "examples" / "rc.yaml"
+
+
+@pytest.fixture
+def rc_copy(tmp_path):
+    path = tmp_path / "rc.yaml"
+    path.write_text(RC.read_text())
+    return path
+
+
+def test_run_refuses_to_overwrite_its_netlist(rc_copy, capsys):
+    before = rc_copy.read_bytes()
+    assert main(["run", str(rc_copy), "--out", str(rc_copy)]) == 2
+    assert "is the input" in capsys.readouterr().err
+    assert rc_copy.read_bytes() == before
+
+
+def test_run_refuses_a_link_to_its_netlist(rc_copy, tmp_path, capsys):
+    link = tmp_path / "out.csv"
+    link.symlink_to(rc_copy)
+    assert main(["run", str(rc_copy), "--out", str(link)]) == 2
+    assert "is the input" in capsys.readouterr().err
+    assert link.is_symlink() and rc_copy.read_text() == RC.read_text()
+
+
+def test_fit_refuses_to_overwrite_its_data(rc_copy, tmp_path, capsys):
+    data = tmp_path / "meas.csv"
+    data.write_text("time,v_out\n0,0\n1,1\n")
+    assert main(["fit", str(rc_copy), str(data), "--report", str(data)]) == 2
+    assert "is the input" in capsys.readouterr().err
+    assert data.read_text() == "time,v_out\n0,0\n1,1\n"
+
+
+def test_out_naming_a_folder_exits_2(rc_copy, tmp_path, capsys):
+    assert main(["run", str(rc_copy), "--out", str(tmp_path)]) == 2
+    assert "is a folder" in capsys.readouterr().err
+
+
+def test_a_symlink_output_is_written_through(rc_copy, tmp_path):
+    target = tmp_path / "real.csv"
+    target.write_text("old")
+    link = tmp_path / "link.csv"
+    link.symlink_to(target)
+    assert main(["run", str(rc_copy), "--out", str(link), "--plot",
+                 str(tmp_path / "p.png")]) == 0
+    assert link.is_symlink() and os.readlink(link) == str(target)
+    assert target.read_text().startswith("time [s],v_out [V],i [A]")
+
+
+def test_a_device_output_is_written_not_replaced(rc_copy, tmp_path):
+    assert main(["run", str(rc_copy), "--out", os.devnull, "--plot", os.devnull]) == 0
+    assert stat.S_ISCHR(os.stat(os.devnull).st_mode)
+
+
+def test_missing_folders_are_created_for_every_output(rc_copy, tmp_path):
+    out = tmp_path / "a" / "b" / "run.csv"
+    png = tmp_path / "c" / "run.png"
+    assert main(["run", str(rc_copy), "--out", str(out), "--plot", str(png)]) == 0
+    assert out.exists() and png.read_bytes()[:4] == b"\x89PNG"
+
+
+@pytest.mark.skipif(os.geteuid() == 0, reason="root writes into read-only folders")
+def test_read_only_folder_exits_2_before_the_run(rc_copy, tmp_path, capsys):
+    ro = tmp_path / "ro"
+    ro.mkdir()
+    ro.chmod(0o500)
+    try:
+        assert main(["run", str(rc_copy), "--out", str(ro / "x.csv")]) == 2
+        assert "cannot write" in capsys.readouterr().err
+    finally:
+        ro.chmod(0o700)
+
+
+@pytest.mark.skipif(not os.path.isdir("/sys/kernel"), reason="no sysfs on this system")
+def test_a_folder_that_refuses_files_exits_3(rc_copy, tmp_path, capsys):
+    # sysfs refuses new files even to root (the read-only-folder test above needs non-root)
+    assert main(["run", str(rc_copy), "--out", "/sys/kernel/circuitsim.csv", "--plot",
+                 str(tmp_path / "p.png")]) == 3
+    err = capsys.readouterr().err
+    assert "cannot write '/sys/kernel/circuitsim.csv'" in err and "Traceback" not in err
+
+
+@pytest.mark.skipif(not os.path.exists("/dev/full"), reason="no /dev/full on this system")
+def test_disk_full_exits_3_with_a_message(rc_copy, tmp_path, capsys):
+    # /dev/full accepts the open and fails every write with ENOSPC
+    assert main(["run", str(rc_copy), "--out", "/dev/full", "--plot",
+                 str(tmp_path / "p.png")]) == 3
+    err = capsys.readouterr().err
+    assert "disk is full" in err and "Traceback" not in err
+
+
+def test_a_failed_write_keeps_the_old_file_and_leaves_no_temporary(rc_copy, tmp_path):
+    """A file-size limit makes the CSV write fail half-way (EFBIG, as a full disk would):
+    exit 3, the old output intact, no hidden temporary beside it."""
+    out = tmp_path / "run.csv"
+    out.write_text("old results\n")
+    code = ("import resource, sys; resource.setrlimit(resource.RLIMIT_FSIZE, (20000, 20000));"
+            "from circuitsim.cli.main import main;"
+            f"sys.exit(main(['run', {str(rc_copy)!r}, '--out', {str(out)!r}, '--plot', "
+            f"{str(tmp_path / 'p.png')!r}]))")
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          timeout=120, check=False)
+    assert proc.returncode == 3, proc.stderr
+    assert "cannot write" in proc.stderr and "Traceback" not in proc.stderr
+    assert out.read_text() == "old results\n"
+    assert not list(tmp_path.glob(".circuitsim-*"))
+
+
+def test_an_interrupted_write_leaves_no_temporary(tmp_path):
+    out = tmp_path / "x.csv"
+
+    def write(tmp: str) -> None:
+        with open(tmp, "w") as fh:
+            fh.write("partial")
+        raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        atomic_write(out, write)
+    assert not out.exists() and not list(tmp_path.iterdir())
+
+
+def test_an_output_error_is_also_an_os_error(tmp_path):
+    with pytest.raises(OSError) as info:
+        atomic_write(tmp_path / "missing" / "x.txt", "x", make_dirs=False)
+    assert isinstance(info.value, OutputError) and info.value.exit_code == 3
+
+
+def test_new_files_get_the_umask_mode(tmp_path):
+    old = os.umask(0o027)
+    try:
+        atomic_write(tmp_path / "a.txt", "x")
+    finally:
+        os.umask(old)
+    assert stat.S_IMODE(os.stat(tmp_path / "a.txt").st_mode) == 0o640
+
+
+def test_run_csv_has_units_and_honours_probe_after_decimate(rc_copy, tmp_path):
+    """The RC step written after 2 ms, every 4th point, one probe: each row obeys
+    v = 1 - exp(-t/RC) (RC = 1 ms) to the integrator's tolerance."""
+    out = tmp_path / "v.csv"
+    assert main(["run", str(rc_copy), "--out", str(out), "--plot", str(tmp_path / "v.png"),
+                 "--probe", "v_out", "--after", "2ms", "--decimate", "4"]) == 0
+    with open(out, newline="") as fh:
+        rows = list(csv.reader(fh))
+    assert rows[0] == ["time [s]", "v_out [V]"]
+    data = np.array(rows[1:], float)
+    assert data[0, 0] == pytest.approx(2e-3) and data[-1, 0] == pytest.approx(5e-3)
+    assert np.allclose(np.diff(data[:, 0]), 4 * 5e-6)  # the netlist's 5 us step, every 4th
+    np.testing.assert_allclose(data[:, 1], 1 - np.exp(-data[:, 0] / 1e-3), atol=1e-6)
+
+
+def test_run_csv_reads_back_as_a_record(rc_copy, tmp_path):
+    """The units in the header do not get in the way of `fit` reading a run's CSV."""
+    from circuitsim.loop.record import load_record
+
+    out = tmp_path / "v.csv"
+    assert main(["run", str(rc_copy), "--out", str(out), "--plot",
+                 str(tmp_path / "v.png")]) == 0
+    rec = load_record(out, ["v_out", "i"])
+    assert set(rec.names) == {"v_out", "i"} and rec.t[-1] == pytest.approx(5e-3)
+
+
+def test_to_dataframe(rc_copy):
+    pd = pytest.importorskip("pandas", reason="pandas is optional (in the test extras)")
+    import circuitsim as cs
+
+    res = cs.compile(cs.load(rc_copy)).simulate()
+    df = res.to_dataframe()
+    assert isinstance(df, pd.DataFrame) and list(df.columns) == ["v_out", "i"]
+    assert df.attrs["units"] == {"v_out": "V", "i": "A"}
+    np.testing.assert_allclose(df["v_out"].to_numpy(), res["v_out"])
+
+
+def test_ctrl_c_exits_130_without_a_traceback(tmp_path):
+    """SIGINT at several moments, from the first import to the run: exit 130, one line."""
+    launch = "import sys; from circuitsim_launch import main; sys.exit(main())"
+    script = [sys.executable, "-c", launch, "run", str(NETLISTS / "kapun2008" / "bldc.yaml"),
+              "--no-files", "--stop", "1"]
+    for delay in (0.05, 0.4, 2.0):
+        proc = subprocess.Popen(script, stderr=subprocess.PIPE, stdout=subprocess.DEVNULL,
+                                text=True, cwd=tmp_path)
+        time.sleep(delay)
+        proc.send_signal(signal.SIGINT)
+        _, err = proc.communicate(timeout=60)
+        assert proc.returncode == 130, (delay, err)
+        assert "Traceback" not in err, (delay, err)
