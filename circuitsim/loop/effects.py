@@ -56,6 +56,7 @@ class Candidate:
         return out
 
 
+BRUSH_EPS = 1e-3  # [A]
 STRIBECK_SPEED = 1.0  # [rad/s] below which the breakaway peak acts
 
 
@@ -150,10 +151,12 @@ def _converter_effects(net: Netlist, orders: Mapping[str, list[int]]) -> list[Ca
     out: list[Candidate] = []
     for t, shaft in _converters(net):
         p = _pname("brush-drop", t, "Vb")
-        out.append(Candidate("brush-drop", t, {p: (0.0, 0.0, 50.0)}, {"i_eps": 0.01},
+        # the sign of the current, smoothed over 1 mA: sharp against a small motor's no-load
+        # current (tens of mA), smooth enough to integrate through a reversal
+        out.append(Candidate("brush-drop", t, {p: (0.0, 0.0, 50.0)}, {"i_eps": BRUSH_EPS},
                              f"a brush contact drop Vb*sign(i) in series with {t}",
                              lambda r, t=t, p=p: _insert_series(
-                                 r, t, f"BD_{t}", f"{p}*tanh({t}.i/0.01)"), steps={p: 1e-2}))
+                                 r, t, f"BD_{t}", f"{p}*tanh({t}.i/{BRUSH_EPS!r})"), steps={p: 1e-2}))
         for k in orders.get(shaft, []):
             a = _pname("emf-harmonic", f"{t}_{k}", "a")
             b = _pname("emf-harmonic", f"{t}_{k}", "b")
@@ -233,7 +236,7 @@ def _component_laws(net: Netlist) -> list[Candidate]:
                 "inductor-saturation", c.name, {p: (1e6, 1e-6, 1e6), q: (0.3, 1e-3, 1.0)}, {},
                 f"saturation of {c.name}: inductance falling with current",
                 lambda r, n=c.name, p=p, q=q: _saturate(r, n, p, q),
-                grid=(3.0, 1.0, 0.3, 0.1)))
+                grid=(3.0, 1.0, 0.3, 0.1, 0.03, 0.01)))
         if c.type in ("R", "resistor"):
             p = _pname("resistance-drift", c.name, "alpha")
             out.append(Candidate(

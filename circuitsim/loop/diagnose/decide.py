@@ -25,7 +25,12 @@ from circuitsim.loop.diagnose.context import (
     weighted,
     weighted_sse,
 )
-from circuitsim.loop.diagnose.noise import delta_bic, significant_lines, whiteners_of
+from circuitsim.loop.diagnose.noise import (
+    delta_bic,
+    significant_lines,
+    transient_excess,
+    whiteners_of,
+)
 
 BIC_MARGIN = 10.0  # "very strong" evidence on the Kass-Raftery scale
 STRUCTURE_SHARE = 0.3  # share of the residual's significant structure an effect must explain
@@ -101,7 +106,8 @@ def judge(setup: Setup, state: ModelState, trial: Trial) -> Trial:
         var = max(new[p] / max(e.size, 1), 1e-300)  # the probe's whitened noise variance
         lines = significant_lines(e, float(np.mean(np.diff(setup.record.t))))
         gain += (old[p] - new[p]) / var
-        structured += lines.structured / var
+        # structure: steady lines or a transient, whichever holds more
+        structured += max(lines.structured, transient_excess(e)) / var
     trial.share = gain / structured if structured > 0 else (1.0 if gain > 0 else 0.0)
     trial.at_bound = _at_bound(trial)
     trial.sse_before, trial.sse_after = weighted_sse(setup, state.fit), \
@@ -117,8 +123,9 @@ def _at_bound(trial: Trial) -> tuple[str, ...]:
     for c in trial.candidates:
         for n, (null, lo, hi) in c.free.items():
             v = trial.fit.params[n]
-            tol = 1e-6 * max(abs(lo), abs(hi), 1e-12)
-            if (abs(v - lo) <= tol and lo != null) or (abs(v - hi) <= tol and hi != null):
+            at_lo = abs(v - lo) <= 1e-6 * max(abs(lo), 1e-12)
+            at_hi = abs(v - hi) <= 1e-6 * max(abs(hi), 1e-12)
+            if (at_lo and lo != null) or (at_hi and hi != null):
                 out.append(n)
     return tuple(out)
 

@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 
 from circuitsim.loop.diagnose.context import ModelState, Setup
-from circuitsim.loop.diagnose.noise import significant_lines, whiteners_of
+from circuitsim.loop.diagnose.noise import significant_lines, transient_excess, whiteners_of
 from circuitsim.loop.diagnose.residual import ORDER_TOL, ljung_box
 
 WINDOWS = 10  # time windows for "when in the record"
@@ -31,7 +31,8 @@ def remaining(setup: Setup, state: ModelState) -> dict[str, Any]:
         r = np.asarray(state.fit.residuals[p], float)
         e = whiten[p].apply(r)
         lines = significant_lines(e, dt)
-        share = lines.structured / lines.total if lines.total > 0 else 0.0
+        structured = max(lines.structured, transient_excess(e))
+        share = structured / lines.total if lines.total > 0 else 0.0
         _, pval = ljung_box(e)
         entry = {"structured_share": share, "white_after_prewhitening": pval > 1e-3,
                  "noise_ar_order": len(whiten[p].a), "lines": _lines(lines, shafts),

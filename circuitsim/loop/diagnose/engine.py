@@ -148,19 +148,53 @@ def _screen_round(setup: Setup, state: ModelState, log: dict[str, Any]) -> list[
                       float(np.linalg.norm(fn(alt) - fn(state.fit.sim)))) for fn in (slow, wave)}
     analysis = analyse(state.model, setup.record, state.fit, setup.probes)
     out = []
-    for prop in propose(setup, state, _orders(analysis), log["tried"]):
+    for prop in _distinct(state, propose(setup, state, _orders(analysis), log["tried"]), log):
         setup.log(f"screening {prop.candidate.key}")
         fn = wave if "order" in prop.candidate.fixed else slow
         s = screen(setup, state, prop, fn, noise[id(fn)])
         if s is not None and s.share > 0:
             out.append(s)
-    out.sort(key=lambda s: -s.share)
-    top = out[0].share if out else 0.0
-    n = setup.n * len(setup.probes)
-    # a gain that cannot pay the BIC penalty even as a white-noise likelihood ratio will not
-    # pass after a refit either; nor one a tenth of the best one's
-    return [s for s in out if s.share >= 0.1 * top and s.share > 1 - math.exp(
-        -(BIC_MARGIN + len(s.proposal.candidate.free) * math.log(n)) / n)]
+    # ranked by the BIC change the gain would give as a white-noise likelihood ratio in the
+    # space it was measured in (shares of different spaces do not compare); one that cannot
+    # pay the margin will not pass after a refit either
+    out = [s for s in out if _score(s) > BIC_MARGIN]
+    out.sort(key=lambda s: -_score(s))
+    return out
+
+
+SERIES = ("series-resistance", "source-resistance")
+
+
+def _distinct(state: ModelState, proposals: list, log: dict[str, Any]) -> list:
+    """A resistance in series with any of several elements that carry the same current is
+    the same circuit: one of them is screened, and the others are named with it."""
+    sim, out, seen = state.fit.sim, [], []
+    for prop in proposals:
+        c = prop.candidate
+        if c.effect not in SERIES:
+            out.append(prop)
+            continue
+        try:
+            i = np.asarray(sim[f"{c.target}.i"], float)
+        except KeyError:
+            out.append(prop)
+            continue
+        scale = max(float(np.max(np.abs(i))), 1e-300)
+        twin = next((k for k, j in seen if np.allclose(np.abs(i), np.abs(j), rtol=1e-6,
+                                                         atol=1e-9 * scale)), None)
+        if twin is None:
+            seen.append((c.key, i))
+            out.append(prop)
+        else:
+            log.setdefault("twins", {}).setdefault(twin, []).append(c.key)
+    return out
+
+
+def _score(s: Screen) -> float:
+    """The BIC fall a screened gain promises (white noise, in its own space)."""
+    dim = max(s.dim, 2)
+    return -dim * math.log(max(1.0 - s.share, 1e-300)) - \
+        len(s.proposal.candidate.free) * math.log(dim)
 
 
 def _near_ties(screens: list[Screen], top: int) -> list[Screen]:
@@ -173,7 +207,7 @@ def _near_ties(screens: list[Screen], top: int) -> list[Screen]:
         if "order" in c.fixed and any(
                 h.proposal.candidate.effect == c.effect and h.proposal.candidate.target ==
                 c.target and abs(h.proposal.candidate.fixed.get("order", -9) -
-                                 c.fixed["order"]) <= 1 and s.share >= 0.8 * h.share
+                                 c.fixed["order"]) <= 1 and _score(s) >= 0.8 * _score(h)
                 for h in head):
             out.append(s)
     return out
@@ -273,13 +307,14 @@ def _swap(setup: Setup, state: ModelState, log: dict[str, Any]) -> ModelState:
         if trial is None:
             continue
         w = whiteners_of(trial.fit.residuals, setup.probes)
-        gain = delta_bic(trial.whitened(setup, w), state.whitened(setup, w), setup.n, 0,
+        extra = len(trial.free) - len(state.free)  # parameters the swap adds (or removes)
+        gain = delta_bic(trial.whitened(setup, w), state.whitened(setup, w), setup.n, extra,
                          setup.probes)
         gains[" + ".join(c.candidate.key for c in combo)] = gain
         setup.log("  swap " + " + ".join(c.candidate.key for c in combo) + f": ΔBIC {gain:.1f}")
         ref = best.whitened(setup, w)
-        if delta_bic(trial.whitened(setup, w), ref, setup.n, 0, setup.probes) < (
-                -BIC_MARGIN if best is state else 0.0):
+        if delta_bic(trial.whitened(setup, w), ref, setup.n, len(trial.free) - len(best.free),
+                     setup.probes) < (-BIC_MARGIN if best is state else 0.0):
             best, best_w = trial, w
     if best is state or best_w is None:
         return state
@@ -402,6 +437,12 @@ def report(setup: Setup, state0: ModelState, state: ModelState, log: dict[str, A
              "correction_of_declared_term": choice.correction})
         (corrections if choice.correction else accepted).append(entry)
     accepted = _merge_refinements(accepted)
+    for choice in state.chosen:
+        twins = log.get("twins", {}).get(choice.candidate.key)
+        if twins:
+            log["indistinct"].append(
+                f"{choice.candidate.key} is the same circuit as {', '.join(sorted(set(twins)))}"
+                f" (the elements carry the same current): the data cannot tell them apart")
     rest = remaining(setup, state)
     analysis0 = analyse(state0.model, setup.record, fit0, setup.probes)
     analysis1 = analyse(state.model, setup.record, final, setup.probes)

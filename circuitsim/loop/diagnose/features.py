@@ -74,14 +74,19 @@ def diagnose_features(netlist, features, free: Sequence[str] = (), *,
              "predicted": dict(f.predicted),
              **_interpolation(len(cur_free), n)}))
         say(f"accepted {cand.key}: chi2 {chi2(f):.4g}")
-    out = _with_values(raw, fit.params)
+    return _features_report(raw, fit0, fit, n, accepted, indistinct, rejected,
+                            time.perf_counter() - start)
+
+
+def _features_report(raw, fit0, fit, n: int, accepted, indistinct, rejected,
+                     seconds: float) -> Diagnosis:
     left = chi2(fit)
     remaining = {"structure": bool(left > n + 3 * math.sqrt(2 * n)), "chi2": left,
                  "note": f"chi-square {left:.3g} for {n} features"}
     return Diagnosis(fit0.error, fit.error, dict(fit0.errors), dict(fit.errors), accepted,
                      indistinct, remaining, {"predicted": dict(fit0.predicted)},
-                     {"predicted": dict(fit.predicted)}, out, fit0, fit, None,
-                     {"total": time.perf_counter() - start}, rejected)
+                     {"predicted": dict(fit.predicted)}, _with_values(raw, fit.params), fit0,
+                     fit, None, {"total": seconds}, rejected)
 
 
 def _features_round(cands, tried, raw, cur_free, params, bounds, n, run, chi2, rejected, say,

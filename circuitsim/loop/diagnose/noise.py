@@ -28,6 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 
 MAX_AR_ORDER = 6
+TIME_WINDOWS = 20  # windows for telling a transient from the typical residual
 LINE_FALSE_ALARM = 0.01  # chance that pure noise shows one "significant" line in a spectrum
 
 
@@ -57,9 +58,23 @@ def _autocovariance(r: np.ndarray, lags: int) -> np.ndarray:
     return acov
 
 
+def _quiet(r: np.ndarray) -> np.ndarray:
+    """The residual without the time windows that stand out (a transient): the noise's
+    colour is learnt where the residual is typical, so that a start-up error is not taken
+    for slowly wandering noise."""
+    m = r.size // TIME_WINDOWS
+    if m < 8:
+        return r
+    power = np.square(r[: m * TIME_WINDOWS] - r.mean()).reshape(TIME_WINDOWS, m).sum(axis=1)
+    typical = float(np.median(power))
+    keep = power <= typical * (1.0 + 4.0 * math.sqrt(2.0 / m))
+    return r[: m * TIME_WINDOWS].reshape(TIME_WINDOWS, m)[keep].ravel()
+
+
 def fit_whitener(r: np.ndarray, max_order: int = MAX_AR_ORDER) -> Whitener:
-    """The AR prewhitening filter of a residual, its order chosen by BIC (0 = white)."""
-    r = np.asarray(r, float)
+    """The AR prewhitening filter of a residual, its order chosen by BIC (0 = white),
+    estimated on its typical windows."""
+    r = _quiet(np.asarray(r, float))
     n = r.size
     acov = _autocovariance(r, max_order)
     if acov[0] <= 0.0 or n < 10 * (max_order + 1):
@@ -140,3 +155,20 @@ def significant_lines(e: np.ndarray, dt: float) -> Lines:
     freqs = np.fft.rfftfreq(n, dt)[hit]
     excess = power[hit] - background
     return Lines(freqs, excess, float(e @ e), float(excess.sum()))
+
+
+
+def transient_excess(e: np.ndarray) -> float:
+    """Sum of squares of ``e`` (a whitened residual) that sits in time windows standing out
+    above the typical window: a transient's structure, which a periodogram spreads over many
+    bins none of which is significant alone. The typical window is the median one, so the
+    measure needs no noise floor; a window counts when it exceeds the median by four of its
+    chi-square standard deviations."""
+    e = np.asarray(e, float)
+    m = e.size // TIME_WINDOWS
+    if m < 8:
+        return 0.0
+    power = np.square(e[: m * TIME_WINDOWS]).reshape(TIME_WINDOWS, m).sum(axis=1)
+    typical = float(np.median(power))
+    limit = typical * (1.0 + 4.0 * math.sqrt(2.0 / m))
+    return float(np.sum(np.clip(power - typical, 0.0, None)[power > limit]))

@@ -48,6 +48,7 @@ class Screen:
     share: float
     start: Mapping[str, float]
     model: Any
+    dim: int = 0  # length of the projected residual the share is of
 
 
 def propose(setup: Setup, state: ModelState, orders: Mapping[str, list[int]],
@@ -98,6 +99,8 @@ def screen(setup: Setup, state: ModelState, proposal: Proposal, project: Project
     cand = proposal.candidate
     model = compile_raw(cand.apply(state.raw))
     base = {**state.params, **{k: v[0] for k, v in cand.free.items()}}
+    if cand.effect in SENSOR_LAWS:
+        return _sensor(setup, state, proposal, model, base, project)
     y0 = simulate(setup, model, base)
     if y0 is None:
         return None
@@ -119,7 +122,7 @@ def screen(setup: Setup, state: ModelState, proposal: Proposal, project: Project
     gain = float(e0 @ (S @ coef))
     start = {n: _inside(cand.free[n], base[n] + float(c))
              for n, c in zip(cand.free, coef, strict=True)}
-    return Screen(proposal, gain / norm0, start, model)
+    return Screen(proposal, gain / norm0, start, model, e0.size)
 
 
 def _inside(spec: tuple[float, float, float], value: float) -> float:
@@ -164,5 +167,32 @@ def _grid(setup: Setup, proposal: Proposal, model, base: Mapping[str, float], y0
         e = e0 - (project(y) - project(y0))
         share = (norm0 - float(e @ e)) / norm0
         if best is None or share > best.share:
-            best = Screen(proposal, share, {n: trial[n] for n in cand.free}, model)
+            best = Screen(proposal, share, {n: trial[n] for n in cand.free}, model, e0.size)
     return best
+
+
+# a sensor law's sensitivity to its parameter at null, from the probe's own series x
+SENSOR_LAWS = {"sensor-gain": lambda x: x, "sensor-offset": np.ones_like}
+
+
+def _sensor(setup: Setup, state: ModelState, proposal: Proposal, model, base,
+            project: Projector) -> Screen | None:
+    """Sensor effects act on one probe only, through a known law: their sensitivity needs
+    no simulation."""
+    cand = proposal.candidate
+    sim = state.fit.sim
+    y0 = {p: np.asarray(sim[p], float) for p in setup.probes}
+    if cand.target not in y0:
+        return None
+    bumped = dict(y0)
+    bumped[cand.target] = y0[cand.target] + SENSOR_LAWS[cand.effect](y0[cand.target])
+    col = project(bumped) - project(y0)
+    e0 = project(setup.record) - project(y0)
+    norm0 = float(e0 @ e0)
+    den = float(col @ col)
+    if norm0 <= 0.0 or den <= 0.0:
+        return None
+    coef = float(col @ e0) / den
+    (name,) = cand.free
+    start = {name: _inside(cand.free[name], base[name] + coef)}
+    return Screen(proposal, coef * coef * den / norm0, start, model, e0.size)
