@@ -26,6 +26,34 @@ def _near(name: str, options) -> str:
     return f" (did you mean {', '.join(close)}?)" if close else ""
 
 
+SPARSE_FROM = 40  # [unknowns] from here on IDA uses the sparse direct solver
+
+
+def _bind(raw, meta: dict, linsolver: str) -> tuple:
+    """The generated functions with dense adapters where the caller wants matrices:
+    (residual, jac, parts, observe, initial, parts_flat)."""
+    residual, jac_flat, parts_flat, observe, initial = raw
+    n = len(meta["states"])
+    rows, cols = (np.asarray(a, dtype=np.intp) for a in meta["jac_pattern"])
+    fy_idx = tuple(np.asarray(a, dtype=np.intp) for a in meta["fy_pattern"])
+    fyp_idx = tuple(np.asarray(a, dtype=np.intp) for a in meta["fyp_pattern"])
+    buf = np.zeros(rows.size)
+
+    def jac_dense(t, y, yp, res, cj, JJ, p):
+        jac_flat(t, y, yp, res, cj, buf, p)
+        JJ[rows, cols] = buf
+
+    def parts(t, y, yp, p):
+        fy, fyp, ft = parts_flat(t, y, yp, p)
+        Fy, Fyp = np.zeros((n, n)), np.zeros((n, n))
+        Fy[fy_idx] = fy
+        Fyp[fyp_idx] = fyp
+        return Fy, Fyp, ft
+
+    jac = jac_flat if linsolver == "sparse" else jac_dense
+    return residual, jac, parts, observe, initial, parts_flat
+
+
 class _Table:
     """Scalar linear interpolation held at the ends; fast enough to call per residual."""
 
@@ -72,7 +100,11 @@ class CompiledModel:
 
     @property
     def fns(self):
-        """(residual, jac, parts, observe, initial) bound to this netlist's tables."""
+        """(residual, jac, parts, observe, initial) bound to this netlist's tables.
+
+        ``jac`` suits ``ida_options()``: a flat array in the pattern's compressed-column
+        order for the sparse solver, the dense n x n matrix otherwise; ``parts`` returns
+        dense dF/dy, dF/dy' and dF/dt (``sparse_parts`` the sparse ones)."""
         if self._fns is None:
             cached = cache.load_cached(self.key)
             if cached is None:  # another machine or a cleared cache: derive again
@@ -80,9 +112,42 @@ class CompiledModel:
                 cached = (cache.load_cached(fresh.key) or (None, None))
             module, _ = cached
             tables = [_Table(t.x, t.y) for c in self.netlist.components for t in c.tables]
-            self._fns = module.make([t.__call__ for t in tables], [t.slope for t in tables],
-                                    [t.vec for t in tables], [t.vec_slope for t in tables])
-        return self._fns
+            raw = module.make([t.__call__ for t in tables], [t.slope for t in tables],
+                              [t.vec for t in tables], [t.vec_slope for t in tables])
+            self._fns = _bind(raw, self.meta, self.linsolver)
+        return self._fns[:5]
+
+    @property
+    def linsolver(self) -> str:
+        """IDA's linear solver for this model: 'sparse' (SuperLU_MT on the structural
+        pattern) once the system is large enough for an O(n^3) dense LU to dominate, else
+        'dense' (cheaper bookkeeping for a handful of unknowns)."""
+        n = len(self.meta["states"])
+        return "sparse" if n >= SPARSE_FROM and "jac_pattern" in self.meta else "dense"
+
+    def ida_options(self) -> dict[str, Any]:
+        """Linear-solver options for ``sksundae.ida.IDA`` matching ``fns``' ``jac``."""
+        _, jac, *_ = self.fns
+        if self.linsolver == "dense":
+            return {"linsolver": "dense", "jacfn": jac}
+        import scipy.sparse as sps
+
+        rows, cols = self.meta["jac_pattern"]
+        n = len(self.state_names)
+        pattern = sps.csc_matrix((np.ones(len(rows)), (rows, cols)), shape=(n, n))
+        pattern.sort_indices()
+        return {"linsolver": "sparse", "sparsity": pattern, "jacfn": jac}
+
+    def sparse_parts(self, t: float, y, yp, p):
+        """dF/dy and dF/dy' as scipy CSC matrices, and dF/dt (for large systems)."""
+        import scipy.sparse as sps
+
+        _ = self.fns
+        fy, fyp, ft = self._fns[5](t, y, yp, p)
+        n = len(self.state_names)
+        (ri, ci), (rp, cp) = self.meta["fy_pattern"], self.meta["fyp_pattern"]
+        return (sps.csc_matrix((fy, (ri, ci)), shape=(n, n)),
+                sps.csc_matrix((fyp, (rp, cp)), shape=(n, n)), ft)
 
     @property
     def state_names(self) -> tuple[str, ...]:

@@ -29,6 +29,18 @@ def _break_times(model, values: Mapping[str, float], stop: float) -> list[float]
     return sorted({b for b in out if 0.0 < b < stop})
 
 
+def make_ida(residual, opts: dict):
+    """An IDA solver; the pattern given with our own Jacobian only sizes the sparse matrix
+    (scikit-sundae warns that its finite-difference use is ignored: that is intended)."""
+    import warnings
+
+    import sksundae as sun
+
+    with warnings.catch_warnings():
+        warnings.filterwarnings("ignore", message="Custom sparse Jacobian approximation")
+        return sun.ida.IDA(residual, **opts)
+
+
 def simulate(model, stop: float | None = None, params: Mapping[str, float] | None = None, *,
              step: float | None = None, t_eval: np.ndarray | None = None,
              rtol: float | None = None, atol: float | None = None,
@@ -48,8 +60,6 @@ def simulate(model, stop: float | None = None, params: Mapping[str, float] | Non
     keep_after : [s] keep every output point after this time, and only every ``decimate``-th
         before it (for long runs whose end is analysed).
     """
-    import sksundae as sun
-
     an = model.netlist.analysis
     stop = float(stop if stop is not None else an.stop)
     if not stop > 0:
@@ -65,7 +75,7 @@ def simulate(model, stop: float | None = None, params: Mapping[str, float] | Non
         n_out = round(stop / h)
         t_eval = np.linspace(0.0, stop, n_out + 1)
     t_eval = np.asarray(t_eval, float)
-    residual, jac, _, _, _ = model.fns
+    residual, _, _, _, _ = model.fns
     nd = model.meta["n_diff"]
     n = len(model.state_names)
     if n == 0:  # every unknown was eliminated: the outputs are explicit functions of t
@@ -107,8 +117,9 @@ def simulate(model, stop: float | None = None, params: Mapping[str, float] | Non
     ts, ys, yps = [], [], []
     nfev = njev = 0
     y, yp, t_now = y0, yp0, 0.0
-    opts = {"rtol": rtol, "atol": atol, "userdata": p, "jacfn": jac, "max_step": max_step,
-            "max_num_steps": 200_000, "algebraic_idx": list(range(nd, n)) or None}
+    opts = {"rtol": rtol, "atol": atol, "userdata": p, "max_step": max_step,
+            "max_num_steps": 200_000, "algebraic_idx": list(range(nd, n)) or None,
+            **model.ida_options()}
     status, detail = Status.OK, ""
     keep_from = keep_after if keep_after is not None else -np.inf
     counter = 0
@@ -135,7 +146,7 @@ def simulate(model, stop: float | None = None, params: Mapping[str, float] | Non
         labels = np.append(inner, mine[-1] if mine.size > inner.size else b)
         for lo in range(0, targets.size, chunk):
             part = targets[lo:lo + chunk]
-            solver = sun.ida.IDA(residual, **opts)
+            solver = make_ida(residual, opts)
             try:
                 sol = solver.solve(np.concatenate([[t_now], part]), y, yp)
             except Exception as exc:  # noqa: BLE001 - the wrapper raises assorted types

@@ -51,11 +51,10 @@ def periodic_steady_state(model, params: Mapping[str, float] | None = None, *,
     Circuits driven by a periodic source: give ``period`` [s]; unknowns are the differential
     states. The Jacobian of the map is built by finite differences of short integrations.
     """
-    import sksundae as sun
-
     from circuitsim.solve.init import consistent_initial, initial_state
+    from circuitsim.solve.integrate import make_ida
 
-    residual, jac, _, _, _ = model.fns
+    residual, _, _, _, _ = model.fns
     p = model.param_vector(params)
     nd = model.meta["n_diff"]
     n = len(model.state_names)
@@ -73,13 +72,13 @@ def periodic_steady_state(model, params: Mapping[str, float] | None = None, *,
         y, _ = initial_state(model, 0.0, p)
         T = float(period)
         free = list(range(nd))
-    opts = {"rtol": rtol, "atol": atol, "userdata": p, "jacfn": jac, "max_num_steps": 500_000,
-            "algebraic_idx": list(range(nd, n)) or None}
+    opts = {"rtol": rtol, "atol": atol, "userdata": p, "max_num_steps": 500_000,
+            "algebraic_idx": list(range(nd, n)) or None, **model.ida_options()}
 
     def flow(y0: np.ndarray, t_end: float, grid: np.ndarray | None = None):
         y0, yp0 = consistent_initial(model, 0.0, y0, p)
         span = grid if grid is not None else np.array([0.0, 0.5 * t_end, t_end])
-        sol = sun.ida.IDA(residual, **opts).solve(span, y0, yp0)
+        sol = make_ida(residual, opts).solve(span, y0, yp0)
         if not sol.success:
             from circuitsim.errors import SolverError
 
