@@ -63,7 +63,8 @@ def _block(exprs: list, printer, indent: str, assign: list[str]) -> list[str]:
     """CSE over exprs, then lines ``assign[k] = <expr k>``."""
     import sympy as sp
 
-    subs, reduced = sp.cse(exprs, symbols=sp.numbered_symbols("c"), optimizations="basic")
+    # no factor_terms pre-pass ("basic"): on a network it costs more than the code it saves
+    subs, reduced = sp.cse(exprs, symbols=sp.numbered_symbols("c"), order="none")
     lines = []
     for sym, val in subs:
         lines.append(f"{indent}{sym} = {printer.doprint(val)}")
@@ -95,7 +96,9 @@ def _derivatives(F: list, Y: list, YP: list, t) -> tuple[dict, dict, list]:
             target, j = (fy, ypos[s]) if s in ypos else (fyp, yppos.get(s))
             if j is None:
                 continue
-            d = sp.diff(f, s)
+            # only the terms that name s (a network equation is a short sum of products)
+            terms = f.args if f.is_Add else (f,)
+            d = sp.Add(*[sp.diff(a, s) for a in terms if s in a.free_symbols])
             if d != 0:
                 target[(i, j)] = d
     return fy, fyp, [sp.diff(f, t) for f in F]
