@@ -152,5 +152,5 @@ def _module(key: str, code) -> ModuleType:
     """A module object running ``code`` (the verified bytecode; no import machinery, so
     no stray __pycache__ file is ever consulted)."""
     mod = ModuleType(f"circuitsim_generated_{key}")
-    exec(code, mod.__dict__)
+    exec(code, mod.__dict__)  # noqa: S102 - our own generated code, hash-checked
     return mod
