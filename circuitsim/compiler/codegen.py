@@ -60,17 +60,55 @@ def _names(dae) -> dict:
 
 
 def _block(exprs: list, printer, indent: str, assign: list[str]) -> list[str]:
-    """CSE over exprs, then lines ``assign[k] = <expr k>``."""
+    """Lines ``assign[k] = <expr k>``, with common subexpressions of the non-polynomial
+    expressions (functions, tables, fractional powers) computed once. Polynomials in the
+    unknowns and parameters -- nearly every equation of a network -- share too little for
+    the search to pay (it was most of the compile time of large circuits)."""
     import sympy as sp
 
-    # no factor_terms pre-pass ("basic"): on a network it costs more than the code it saves
-    subs, reduced = sp.cse(exprs, symbols=sp.numbered_symbols("c"), order="none")
+    heavy = [k for k, e in enumerate(exprs) if not _polynomial(e)]
     lines = []
-    for sym, val in subs:
-        lines.append(f"{indent}{sym} = {printer.doprint(val)}")
+    reduced = list(exprs)
+    if heavy:
+        subs, red = sp.cse([exprs[k] for k in heavy], symbols=sp.numbered_symbols("c"),
+                           order="none")
+        for sym, val in subs:
+            lines.append(f"{indent}{sym} = {_print(val, printer)}")
+        for k, e in zip(heavy, red, strict=True):
+            reduced[k] = e
     for target, e in zip(assign, reduced, strict=True):
-        lines.append(f"{indent}{target} = {printer.doprint(e)}")
+        lines.append(f"{indent}{target} = {_print(e, printer)}")
     return lines
+
+
+def _polynomial(e) -> bool:
+    """Only sums, products and integer powers of symbols and numbers."""
+    if e.is_Symbol or e.is_Number:
+        return True
+    if e.is_Add or e.is_Mul:
+        return all(_polynomial(a) for a in e.args)
+    if e.is_Pow:
+        return e.exp.is_Integer and _polynomial(e.base)
+    return False
+
+
+def _print(e, printer) -> str:
+    """Python source of e: sums, products, integer powers, symbols and numbers written
+    directly (sympy's printers cost ~0.1-0.2 ms an expression, which dominated code
+    generation at a few thousand unknowns); everything else through ``printer``."""
+    if e.is_Symbol:
+        return e.name
+    if e.is_Integer:
+        return str(int(e))
+    if e.is_Float:
+        return repr(float(e))
+    if e.is_Add:
+        return "(" + " + ".join(_print(a, printer) for a in e.args) + ")"
+    if e.is_Mul:
+        return "(" + "*".join(_print(a, printer) for a in e.args) + ")"
+    if e.is_Pow and e.exp.is_Integer:
+        return f"({_print(e.base, printer)})**({int(e.exp)})"
+    return f"({printer.doprint(e)})"
 
 
 def _unpack(n: int, prefix: str, src: str, indent: str, used: set[str]) -> list[str]:
@@ -98,10 +136,23 @@ def _derivatives(F: list, Y: list, YP: list, t) -> tuple[dict, dict, list]:
                 continue
             # only the terms that name s (a network equation is a short sum of products)
             terms = f.args if f.is_Add else (f,)
-            d = sp.Add(*[sp.diff(a, s) for a in terms if s in a.free_symbols])
+            d = sp.Add(*[_term_diff(a, s) for a in terms if s in a.free_symbols])
             if d != 0:
                 target[(i, j)] = d
     return fy, fyp, [sp.diff(f, t) for f in F]
+
+
+def _term_diff(a, s):
+    """d a / d s, directly for s and c*s with c free of s (most terms of a network)."""
+    import sympy as sp
+
+    if a == s:
+        return sp.Integer(1)
+    if a.is_Mul and a.args.count(s) == 1:
+        rest = [f for f in a.args if f != s]
+        if not any(s in f.free_symbols for f in rest):
+            return sp.Mul(*rest)
+    return sp.diff(a, s)
 
 
 def _pattern(fy: dict, fyp: dict) -> list[tuple[int, int]]:
@@ -162,7 +213,7 @@ def _body(name: str, args: str, exprs: list, targets: list[str], n: int, n_param
 def _plain(exprs: list, printer, indent: str, assign: list[str]) -> list[str]:
     """Lines ``assign[k] = <expr k>`` without common-subexpression search (for many small,
     independent outputs, where the search costs more than it saves)."""
-    return [f"{indent}{target} = {printer.doprint(e)}"
+    return [f"{indent}{target} = {_print(e, printer)}"
             for target, e in zip(assign, exprs, strict=True)]
 
 

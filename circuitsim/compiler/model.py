@@ -193,12 +193,13 @@ class CompiledModel:
 
     def physics_warnings(self, values: Mapping[str, float]) -> list[str]:
         out = []
+        own: dict[str, dict[str, float]] = {}  # component -> its own scalar values
+        for name, v in values.items():
+            comp_name, _, key = name.rpartition(".")
+            own.setdefault(comp_name, {})[key] = v
         for comp in self.netlist.components:
             local: dict[str, Any] = dict(comp.structure)
-            prefix = f"{comp.name}."
-            for name, v in values.items():
-                if name.startswith(prefix) and "." not in name[len(prefix):]:
-                    local[name[len(prefix):]] = v
+            local.update(own.get(comp.name, {}))
             for k, n in comp.structure.items():
                 if isinstance(n, int) and not isinstance(n, bool):
                     local[k] = [None] * n

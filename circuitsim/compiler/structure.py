@@ -128,10 +128,32 @@ class _System:
 
 def _linear_coeff(e: sp.Expr, v: sp.Symbol) -> sp.Expr | None:
     """Coefficient of v if e is linear in v with a constant numeric coefficient."""
-    c = sp.diff(e, v)
+    c = sp.Integer(0)
+    for a in e.args if e.is_Add else (e,):
+        if a == v:
+            c += 1
+        elif a.is_Mul and len(a.args) == 2 and a.args[0].is_Number and a.args[1] == v:
+            c += a.args[0]  # the usual -1*v: no call to diff
+        elif v in a.free_symbols:
+            c += sp.diff(a, v)
     if c.free_symbols or not c.is_number or c == 0:
         return None
     return c
+
+
+def _solve_for(e: sp.Expr, v: sp.Symbol, c: sp.Expr) -> sp.Expr:
+    """v from e = 0, e linear in v with numeric coefficient c. A sum with the single term
+    c*v is rearranged term by term (expand, the general route, dominated elimination)."""
+    if e.is_Add:
+        hits = [a for a in e.args if v in a.free_symbols]
+        if len(hits) == 1 and (hits[0] == v or hits[0] == c * v):
+            others = [a for a in e.args if a is not hits[0]]
+            if c == 1:
+                return sp.Add(*[-a for a in others])
+            if c == -1:
+                return sp.Add(*others)
+            return sp.Add(*[-a / c for a in others])
+    return sp.expand(v - e / c) if len(e.args) < 8 else v - e / c
 
 
 class _Index:
@@ -202,7 +224,7 @@ def _candidate(ix: _Index, k: int, v: sp.Symbol):
     c = _linear_coeff(e, v)
     if c is None:
         return None
-    rest = sp.expand(v - e / c) if len(e.args) < 8 else v - e / c
+    rest = _solve_for(e, v, c)
     rest_inc = sys.incidence(rest)
     mapping = {v: rest}
     new_inc = {v: rest_inc}
