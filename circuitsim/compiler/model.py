@@ -31,7 +31,7 @@ SPARSE_FROM = 40  # [unknowns] from here on IDA uses the sparse direct solver
 
 def _bind(raw, meta: dict, linsolver: str) -> tuple:
     """The generated functions with dense adapters where the caller wants matrices:
-    (residual, jac, parts, observe, initial, parts_flat)."""
+    (residual, jac, parts, observe, initial, parts_flat, jac_flat)."""
     residual, jac_flat, parts_flat, observe, initial = raw
     n = len(meta["states"])
     rows, cols = (np.asarray(a, dtype=np.intp) for a in meta["jac_pattern"])
@@ -51,7 +51,7 @@ def _bind(raw, meta: dict, linsolver: str) -> tuple:
         return Fy, Fyp, ft
 
     jac = jac_flat if linsolver == "sparse" else jac_dense
-    return residual, jac, parts, observe, initial, parts_flat
+    return residual, jac, parts, observe, initial, parts_flat, jac_flat
 
 
 class _Table:
@@ -137,6 +137,13 @@ class CompiledModel:
         pattern = sps.csc_matrix((np.ones(len(rows)), (rows, cols)), shape=(n, n))
         pattern.sort_indices()
         return {"linsolver": "sparse", "sparsity": pattern, "jacfn": jac}
+
+    @property
+    def jac_flat(self):
+        """The Jacobian kernel filling a flat array in ``meta["jac_pattern"]`` order,
+        whatever the linear solver (a batch stacks these blocks)."""
+        _ = self.fns
+        return self._fns[6]
 
     def sparse_parts(self, t: float, y, yp, p):
         """dF/dy and dF/dy' as scipy CSC matrices, and dF/dt (for large systems)."""

@@ -100,19 +100,19 @@ def simulate(model, stop: float | None = None, params: Mapping[str, float] | Non
     if n == 0:  # every unknown was eliminated: the outputs are explicit functions of t
         empty = np.zeros((0, run.t_eval.size))
         return _finite(SimResult(run.t_eval, empty, empty, (), Status.OK, "", 0, 0, model, p))
-    start = _start(model, run, params, p)
+    start = consistent_start(model, run, params, p)
     if isinstance(start, str):
         return SimResult(run.t_eval[:0], np.zeros((n, 0)), np.zeros((n, 0)),
                          model.state_names, Status.INIT_FAILED, start, 0, 0, model, p)
-    rec = _Recorder(keep_after, decimate)
-    status, detail, nfev, njev = _integrate(model, run, p, _edges(model, values, run.stop),
+    rec = Recorder(keep_after, decimate)
+    status, detail, nfev, njev = _integrate(model, run, p, corners(model, values, run.stop),
                                             start, rec, chunk)
     t_all, y_all, yp_all = rec.arrays(n)
     return _finite(SimResult(t_all, y_all, yp_all, model.state_names, status, detail, nfev,
                              njev, model, p))
 
 
-def _start(model, run: Settings, params: Mapping[str, float] | None, p: tuple
+def consistent_start(model, run: Settings, params: Mapping[str, float] | None, p: tuple
            ) -> tuple[np.ndarray, np.ndarray] | str:
     """Consistent (y, y') at t = 0, or why there are none."""
     overridden = frozenset(params or {})
@@ -137,7 +137,7 @@ def _start(model, run: Settings, params: Mapping[str, float] | None, p: tuple
     return y0, yp0
 
 
-def _edges(model, values: Mapping[str, float], stop: float) -> list[float]:
+def corners(model, values: Mapping[str, float], stop: float) -> list[float]:
     """0, the waveform corners, stop; corners closer than IDA can resolve
     (|tout - t0| ~ 1e-13 t) are merged into one."""
     eps = 1e-11 * stop
@@ -149,7 +149,7 @@ def _edges(model, values: Mapping[str, float], stop: float) -> list[float]:
     return edges
 
 
-class _Recorder:
+class Recorder:
     """Collects output rows, keeping every ``decimate``-th before ``keep_after``."""
 
     def __init__(self, keep_after: float | None, decimate: int):
@@ -175,26 +175,51 @@ class _Recorder:
                 np.concatenate(self.yps).T)
 
 
-def _integrate(model, run: Settings, p: tuple, edges: list[float],
-               start: tuple[np.ndarray, np.ndarray], record: _Recorder, chunk: int
-               ) -> tuple[Status, str, int, int]:
-    """IDA from corner to corner, restarting with consistent derivatives at each."""
-    residual = model.fns[0]
+@dataclass(frozen=True)
+class System:
+    """What the corner-to-corner integration needs: the residual, IDA's options, how to
+    restart consistently at a waveform corner, and the unknowns' names (for messages)."""
+
+    residual: object
+    opts: dict
+    restart: object  # (t, y, y') -> consistent (y, y') at t
+    names: tuple[str, ...]
+
+
+def model_system(model, run: Settings, p: tuple) -> System:
+    """The System of one model at parameter vector p."""
     nd, n = model.meta["n_diff"], len(model.state_names)
-    eps = 1e-11 * run.stop
     opts = {"rtol": run.rtol, "atol": run.atol, "userdata": p, "max_step": run.max_step,
             "max_num_steps": 200_000, "algebraic_idx": list(range(nd, n)) or None,
             **model.ida_options()}
+
+    def restart(t: float, y: np.ndarray, yp: np.ndarray):
+        return consistent_initial(model, t, y, p, yp_guess=yp)
+
+    return System(model.fns[0], opts, restart, model.state_names)
+
+
+def _integrate(model, run: Settings, p: tuple, edges: list[float],
+               start: tuple[np.ndarray, np.ndarray], record: Recorder, chunk: int
+               ) -> tuple[Status, str, int, int]:
+    return integrate_system(model_system(model, run, p), run, edges, start, record, chunk)
+
+
+def integrate_system(system: System, run: Settings, edges: list[float],
+                     start: tuple[np.ndarray, np.ndarray], record: Recorder, chunk: int
+                     ) -> tuple[Status, str, int, int]:
+    """IDA from corner to corner, restarting with consistent derivatives at each."""
+    eps = 1e-11 * run.stop
     y, yp = start
     first = run.t_eval[run.t_eval <= eps]
     if first.size:
         record(first[:1], y[None, :], yp[None, :])
     state = _Segment(y, yp, 0.0, 0, 0)
     for a, b in itertools.pairwise(edges):
-        detail = _segment(model, residual, opts, run, a, b, eps, state, record, chunk)
+        detail = _segment(system, run, a, b, eps, state, record, chunk)
         if detail is None and b < run.stop:  # a waveform corner: consistent derivatives
             try:
-                state.y, state.yp = consistent_initial(model, b, state.y, p, yp_guess=state.yp)
+                state.y, state.yp = system.restart(b, state.y, state.yp)
             except SolverError as exc:
                 detail = exc.bare
         if detail is not None:
@@ -213,8 +238,8 @@ class _Segment:
     njev: int
 
 
-def _segment(model, residual, opts: dict, run: Settings, a: float, b: float, eps: float,
-             state: _Segment, record: _Recorder, chunk: int) -> str | None:
+def _segment(system: System, run: Settings, a: float, b: float, eps: float,
+             state: _Segment, record: Recorder, chunk: int) -> str | None:
     """Integrate over (a, b] in chunks of output times; None, or why it failed."""
     # each requested time belongs to one segment; one within eps of the corner b is
     # reported as the state at b
@@ -227,8 +252,8 @@ def _segment(model, residual, opts: dict, run: Settings, a: float, b: float, eps
     for lo in range(0, targets.size, chunk):
         part = targets[lo:lo + chunk]
         try:
-            sol = make_ida(residual, opts).solve(np.concatenate([[state.t], part]),
-                                                 state.y, state.yp)
+            sol = make_ida(system.residual, system.opts).solve(
+                np.concatenate([[state.t], part]), state.y, state.yp)
         except Exception as exc:  # noqa: BLE001 - the wrapper raises assorted types
             return (f"at t = {state.t:.6g} s the integrator stopped ({exc!r}); try "
                     f"smaller tolerances or max_step")
@@ -246,7 +271,7 @@ def _segment(model, residual, opts: dict, run: Settings, a: float, b: float, eps
             record(labels[lo:lo + done][w], got_y[1:][w], got_yp[1:][w])
         if not sol.success or done < part.size:
             t_fail = float(got_t[-1]) if got_t.size else state.t
-            return _failure(model, sol, t_fail, run.rtol, run.atol)
+            return _failure(system.names, sol, t_fail, run.rtol, run.atol)
         state.y, state.yp, state.t = got_y[-1], got_yp[-1], float(got_t[-1])
     return None
 
@@ -271,13 +296,13 @@ def _finite(res: SimResult) -> SimResult:
     return res
 
 
-def _failure(model, sol, t_fail: float, rtol: float, atol: float) -> str:
+def _failure(names: tuple[str, ...], sol, t_fail: float, rtol: float, atol: float) -> str:
     y = np.asarray(sol.y)
     yp = np.asarray(sol.yp)
     name = "?"
     if y.size:
         rate = np.abs(yp[-1]) / (rtol * np.abs(y[-1]) + atol)
-        name = model.state_names[int(np.argmax(rate))]
+        name = names[int(np.argmax(rate))]
     return (f"at t = {t_fail:.6g} s ({str(sol.message).strip()}); fastest-changing variable: "
             f"{name}. Try smaller tolerances or max_step, check the parameter values, or run "
             f"`circuitsim check NETLIST`")
