@@ -64,7 +64,7 @@ def test_an_invalid_member_raises_as_alone(compile_text):
     from circuitsim.errors import ParameterError
 
     model = compile_text(RC)
-    with pytest.raises(ParameterError, match="R1.R"):
+    with pytest.raises(ParameterError, match=r"R1\.R"):
         model.simulate(params={"R1.R": -1.0})
-    with pytest.raises(ParameterError, match="R1.R"):
+    with pytest.raises(ParameterError, match=r"R1\.R"):
         simulate_batch(model, [{"R1.R": 1000.0}, {"R1.R": -1.0}])
