@@ -124,7 +124,7 @@ def probe_values(model, op: OperatingPoint, params: Mapping[str, float] | None =
         Y[k] += samples
     YP = np.repeat(op.yp[:, None], len(samples), axis=1)
     with np.errstate(all="ignore"):
-        vals = observe(0.0, Y, YP, p)
+        vals = observe(0.0, Y, YP, p, which=range(model.meta["n_probes"]))
     names = model.meta["observed"][: model.meta["n_probes"]]
     return {n: float(np.mean(np.broadcast_to(np.asarray(v, float), (len(samples),))))
             for n, v in zip(names, vals, strict=False)}

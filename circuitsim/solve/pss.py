@@ -28,7 +28,7 @@ class PeriodicSteadyState:
 
     def __getitem__(self, name: str) -> np.ndarray:
         out = _output_index(self.model, name)
-        return _observe_batch(self.model, None, self.y, self.yp, self.p)[out]
+        return _observe_batch(self.model, None, self.y, self.yp, self.p, out)
 
     def harmonic(self, name: str, k: int = 1) -> tuple[float, float, float]:
         """(frequency [Hz], amplitude, phase [rad]) of the k-th harmonic of the period, from
