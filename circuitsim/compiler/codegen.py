@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from typing import Any
 
-CODEGEN_VERSION = "7"
+CODEGEN_VERSION = "8"
 
 
 def _printers():
@@ -59,7 +59,7 @@ def _names(dae) -> dict:
     return m
 
 
-def _block(exprs: list, printer, indent: str, assign: list[str]) -> list[str]:
+def _block(exprs: list, printer, indent: str, assign: list[str], op: str = "=") -> list[str]:
     """Lines ``assign[k] = <expr k>``, with common subexpressions of the non-polynomial
     expressions (functions, tables, fractional powers) computed once. Polynomials in the
     unknowns and parameters -- nearly every equation of a network -- share too little for
@@ -77,7 +77,7 @@ def _block(exprs: list, printer, indent: str, assign: list[str]) -> list[str]:
         for k, e in zip(heavy, red, strict=True):
             reduced[k] = e
     for target, e in zip(assign, reduced, strict=True):
-        lines.append(f"{indent}{target} = {_print(e, printer)}")
+        lines.append(f"{indent}{target} {op} {_print(e, printer)}")
     return lines
 
 
@@ -155,6 +155,60 @@ def _term_diff(a, s):
     return sp.diff(a, s)
 
 
+def _linear_term(a, ypos: dict, yppos: dict):
+    """(0 for y / 1 for y', column, coefficient) if a = coefficient * one unknown or
+    derivative, the coefficient free of every unknown, derivative and t; else None."""
+    import sympy as sp
+
+    factors = a.args if a.is_Mul else (a,)
+    hits = [f for f in factors if f in ypos or f in yppos]
+    if len(hits) != 1:
+        return None
+    s = hits[0]
+    rest = [f for f in factors if f is not s]
+    if any(q.name == "t" or q in ypos or q in yppos
+           for f in rest for q in f.free_symbols):
+        return None
+    return (0, ypos[s]) if s in ypos else (1, yppos[s]), sp.Mul(*rest)
+
+
+def _linear_functions(F: list, Y: list, YP: list, n: int, n_par: int, scalar):
+    """F = Ly(p) y + Lyp(p) y' + rest(t, y, y', p): the coefficient matrices' values as a
+    function of the parameters alone (``linear``) and the remaining terms (``rest``), which
+    for a network are a few sources and nonlinear parts. The model evaluates the linear part
+    as a sparse matrix product, so the per-call cost of a large network is not n lines of
+    Python (the full ``residual`` stays, with the same values, for small models)."""
+    import sympy as sp
+
+    ypos = {s: j for j, s in enumerate(Y)}
+    yppos = {s: j for j, s in enumerate(YP)}
+    coef: list[dict] = [{}, {}]
+    rest_rows, rest_exprs = [], []
+    for i, f in enumerate(F):
+        other = []
+        for a in f.args if f.is_Add else (f,):
+            hit = _linear_term(a, ypos, yppos)
+            if hit is None:
+                other.append(a)
+            else:
+                (kind, j), c = hit
+                coef[kind][(i, j)] = coef[kind].get((i, j), 0) + c
+        if other:
+            rest_rows.append(i)
+            rest_exprs.append(sp.Add(*other))
+    ly, lyp = coef
+    src = _body("linear", "p", [*ly.values(), *lyp.values()],
+                [f"Ly[{k}]" for k in range(len(ly))] + [f"Lyp[{k}]" for k in range(len(lyp))],
+                n, n_par, scalar, pre=[f"        Ly = numpy.zeros({len(ly)})",
+                                       f"        Lyp = numpy.zeros({len(lyp)})"],
+                post=["        return Ly, Lyp"], fail="Ly[:] = Lyp[:] = math.nan")
+    src += _body("rest", "t, y, yp, res, p", rest_exprs, [f"res[{i}]" for i in rest_rows],
+                 n, n_par, scalar, fail="res[:] = math.nan", add=True)
+    meta = {"ly_pattern": [[i for i, _ in ly], [j for _, j in ly]],
+            "lyp_pattern": [[i for i, _ in lyp], [j for _, j in lyp]]}
+    return src, meta
+
+
 def _pattern(fy: dict, fyp: dict) -> list[tuple[int, int]]:
     """The Jacobian's nonzeros (i, j) in compressed-sparse-column order (the order IDA's
     sparse solver stores them in)."""
@@ -182,7 +236,7 @@ def _initial(dae, ren: dict) -> tuple[list, list, list]:
 
 def _body(name: str, args: str, exprs: list, targets: list[str], n: int, n_params: int,
           printer, pre: list[str] = (), post: list[str] = (), vec: bool = False,
-          fail: str = "", cse: bool = True) -> list[str]:
+          fail: str = "", cse: bool = True, add: bool = False) -> list[str]:
     """One generated function: unpack the arguments it uses, evaluate, store."""
     from circuitsim.component import as_expr
 
@@ -197,23 +251,24 @@ def _body(name: str, args: str, exprs: list, targets: list[str], n: int, n_param
     lines += _unpack(n_params, "p", "p", "        ", used)
     lines += list(pre)
     block = _block if cse else _plain
+    op = "+=" if add else "="  # accumulate into the targets, or set them
     if fail:
         # Scalar code runs on Python floats, which raise where numpy would give inf or
         # nan (x**n/x at x = 0, log(0), sqrt(-1)): the solver gets NaN instead -- a failed
         # step it can retry smaller, or a clear "not finite" error -- never a traceback
         lines += ["        try:"]
-        lines += block(exprs, printer, "            ", targets) or ["            pass"]
+        lines += block(exprs, printer, "            ", targets, op) or ["            pass"]
         lines += ["        except (ArithmeticError, ValueError, TypeError):", f"            {fail}"]
     else:
-        lines += block(exprs, printer, "        ", targets)
+        lines += block(exprs, printer, "        ", targets, op)
     lines += list(post) or ["        return None"]
     return lines
 
 
-def _plain(exprs: list, printer, indent: str, assign: list[str]) -> list[str]:
+def _plain(exprs: list, printer, indent: str, assign: list[str], op: str = "=") -> list[str]:
     """Lines ``assign[k] = <expr k>`` without common-subexpression search (for many small,
     independent outputs, where the search costs more than it saves)."""
-    return [f"{indent}{target} = {_print(e, printer)}"
+    return [f"{indent}{target} {op} {_print(e, printer)}"
             for target, e in zip(assign, exprs, strict=True)]
 
 
@@ -301,7 +356,10 @@ def generate(dae) -> tuple[str, dict[str, Any]]:
                  [f"out[{k}]" for k in range(2 * n_init)], n, n_par, scalar,
                  pre=[f"        out = [0.0] * {2 * n_init}"], post=["        return out"],
                  fail=f"out = [math.nan] * {2 * n_init}")
-    src += ["    return residual, jac, parts, observe, initial", ""]
+    lin_src, lin_meta = _linear_functions(F, [ren[s] for s in dae.states],
+                                          [ren[s] for s in dae.yp], n, n_par, scalar)
+    src += lin_src
+    src += ["    return residual, jac, parts, observe, initial, linear, rest", ""]
     # every probe and exported quantity as the source of one vectorised expression, compiled
     # only when asked for: a circuit of thousands of parts exports tens of thousands of
     # quantities, and evaluating them all at every output point would cost gigabytes
@@ -310,7 +368,7 @@ def generate(dae) -> tuple[str, dict[str, Any]]:
     meta.update({"jac_nnz": len(pattern), "jac_pattern": [[i for i, _ in pattern],
                                                           [j for _, j in pattern]],
                  "fy_pattern": [[i for i, _ in fy], [j for _, j in fy]],
-                 "fyp_pattern": [[i for i, _ in fyp], [j for _, j in fyp]]})
+                 "fyp_pattern": [[i for i, _ in fyp], [j for _, j in fyp]], **lin_meta})
     return "\n".join(src), meta
 
 

@@ -32,8 +32,10 @@ SPARSE_FROM = 40  # [unknowns] from here on IDA uses the sparse direct solver
 def _bind(raw, meta: dict, linsolver: str) -> tuple:
     """The generated functions with dense adapters where the caller wants matrices:
     (residual, jac, parts, observe, initial, parts_flat, jac_flat)."""
-    residual, jac_flat, parts_flat, observe, initial = raw
+    residual, jac_flat, parts_flat, observe, initial, linear, rest = raw
     n = len(meta["states"])
+    if linsolver == "sparse":
+        residual = _split_residual(linear, rest, meta, n)
     rows, cols = (np.asarray(a, dtype=np.intp) for a in meta["jac_pattern"])
     fy_idx = tuple(np.asarray(a, dtype=np.intp) for a in meta["fy_pattern"])
     fyp_idx = tuple(np.asarray(a, dtype=np.intp) for a in meta["fyp_pattern"])
@@ -52,6 +54,34 @@ def _bind(raw, meta: dict, linsolver: str) -> tuple:
 
     jac = jac_flat if linsolver == "sparse" else jac_dense
     return residual, jac, parts, observe, initial, parts_flat, jac_flat
+
+
+def _split_residual(linear, rest, meta: dict, n: int):
+    """F = Ly(p) y + Lyp(p) y' + rest(t, y, y', p) with the linear part as sparse matrix
+    products: the same values as the generated scalar residual, at a cost that no longer
+    grows by a line of Python per equation. The matrices are built once per parameter
+    vector."""
+    import scipy.sparse as sps
+
+    (ri, ci), (rpi, cpi) = meta["ly_pattern"], meta["lyp_pattern"]
+    mats: dict[tuple, tuple] = {}
+
+    def matrices(p: tuple) -> tuple:
+        got = mats.get(p)
+        if got is None:
+            if len(mats) > 64:  # a long fit: keep the memory bounded
+                mats.clear()
+            ly, lyp = linear(p)
+            got = mats[p] = (sps.csr_matrix((ly, (ri, ci)), shape=(n, n)),
+                             sps.csr_matrix((lyp, (rpi, cpi)), shape=(n, n)))
+        return got
+
+    def residual(t, y, yp, res, p):
+        Ly, Lyp = matrices(p)
+        res[:] = Ly @ y + Lyp @ yp
+        rest(t, y, yp, res, p)
+
+    return residual
 
 
 class _Table:
