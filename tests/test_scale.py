@@ -40,7 +40,7 @@ def rlc_ladder_with_a_nonlinear_load(n: int) -> str:
 def test_elimination_adds_no_fill_in(compile_text):
     """Jacobian nonzeros and unknowns grow linearly with the sections (they grew as N^2
     when every linear equation was substituted)."""
-    a, b = (compile_text(rc_ladder(n)) for n in (40, 80))
+    a, b = (compile_text(rc_ladder(n)) for n in (100, 200))
     assert b.meta["jac_nnz"] / a.meta["jac_nnz"] == pytest.approx(2.0, rel=0.03)
     assert len(b.state_names) / len(a.state_names) == pytest.approx(2.0, rel=0.03)
     assert b.meta["jac_nnz"] < 4 * len(b.state_names)
@@ -49,7 +49,7 @@ def test_elimination_adds_no_fill_in(compile_text):
 def test_sparse_residual_equals_the_scalar_code(compile_text):
     """The matrix-product residual of a large model against the generated scalar one at
     random points, and the sparse Jacobian against finite differences of the residual."""
-    model = compile_text(rlc_ladder_with_a_nonlinear_load(25))
+    model = compile_text(rlc_ladder_with_a_nonlinear_load(50))
     n = len(model.state_names)
     assert n >= SPARSE_FROM and model.linsolver == "sparse"
     module, _ = cache.load_cached(model.key)
@@ -81,8 +81,8 @@ def test_sparse_residual_equals_the_scalar_code(compile_text):
 
 @pytest.mark.ngspice
 @pytest.mark.skipif(not have_ngspice(), reason="ngspice not on PATH")
-def test_a_ladder_of_60_sections_agrees_with_ngspice(compile_text):
-    n, stop = 60, 2e-4
+def test_a_ladder_of_100_sections_agrees_with_ngspice(compile_text):
+    n, stop = 100, 2e-4
     model = compile_text(rc_ladder(n, stop))
     assert model.linsolver == "sparse"
     res = model.simulate()
