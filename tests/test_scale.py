@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from circuitsim.compiler import cache
-from circuitsim.compiler.model import SPARSE_FROM
+from circuitsim.compiler import model as model_module
 
 from ngspice import have_ngspice, run_ngspice
 
@@ -51,7 +51,7 @@ def test_sparse_residual_equals_the_scalar_code(compile_text):
     random points, and the sparse Jacobian against finite differences of the residual."""
     model = compile_text(rlc_ladder_with_a_nonlinear_load(50))
     n = len(model.state_names)
-    assert n >= SPARSE_FROM and model.linsolver == "sparse"
+    assert n >= model_module.MATRIX_RESIDUAL_FROM
     module, _ = cache.load_cached(model.key)
     scalar = module.make([], [], [], [])[0]
     p = model.param_vector()
@@ -81,10 +81,14 @@ def test_sparse_residual_equals_the_scalar_code(compile_text):
 
 @pytest.mark.ngspice
 @pytest.mark.skipif(not have_ngspice(), reason="ngspice not on PATH")
-def test_a_ladder_of_100_sections_agrees_with_ngspice(compile_text):
+@pytest.mark.parametrize("solver", ["dense", "sparse"])
+def test_a_ladder_of_100_sections_agrees_with_ngspice(compile_text, monkeypatch, solver):
+    """Both linear solvers (the sparse one chosen here below its usual size)."""
+    if solver == "sparse":
+        monkeypatch.setattr(model_module, "SPARSE_FROM", 50)
     n, stop = 100, 2e-4
     model = compile_text(rc_ladder(n, stop))
-    assert model.linsolver == "sparse"
+    assert model.linsolver == solver
     res = model.simulate()
     assert res.success, res.message
     deck = ["* rc ladder", "Vs n0 0 PWL(0 0 1e-6 1)"]

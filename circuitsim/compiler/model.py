@@ -26,8 +26,12 @@ def _near(name: str, options) -> str:
     return f" (did you mean {', '.join(close)}?)" if close else ""
 
 
-SPARSE_FROM = 100  # [unknowns] from here on: sparse solver and matrix-product residual
-# (measured on RLC ladders: sparse 5x slower at 16 unknowns, 2x at 50, equal at 100)
+# [unknowns] from here on the residual's linear part is a sparse matrix product (measured on
+# RLC ladders: 5x slower than the scalar code at 16 unknowns, 2x at 50, equal at 100) ...
+MATRIX_RESIDUAL_FROM = 100
+# ... and IDA factorises with SuperLU_MT instead of a dense LU (its ~10 ms per factorisation
+# loses to the dense O(n^3) LU up to a few hundred unknowns: measured crossover 250-500)
+SPARSE_FROM = 400
 
 
 def _bind(raw, meta: dict, linsolver: str) -> tuple:
@@ -35,7 +39,7 @@ def _bind(raw, meta: dict, linsolver: str) -> tuple:
     (residual, jac, parts, observe, initial, parts_flat, jac_flat)."""
     residual, jac_flat, parts_flat, observe, initial, linear, rest = raw
     n = len(meta["states"])
-    if linsolver == "sparse":
+    if n >= MATRIX_RESIDUAL_FROM:
         residual = _split_residual(linear, rest, meta, n)
     rows, cols = (np.asarray(a, dtype=np.intp) for a in meta["jac_pattern"])
     fy_idx = tuple(np.asarray(a, dtype=np.intp) for a in meta["fy_pattern"])
@@ -152,7 +156,7 @@ class CompiledModel:
     def linsolver(self) -> str:
         """IDA's linear solver for this model: 'sparse' (SuperLU_MT on the structural
         pattern) once the system is large enough for an O(n^3) dense LU to dominate, else
-        'dense' (cheaper bookkeeping for a handful of unknowns)."""
+        'dense' (SuperLU_MT's fixed cost per factorisation is larger below ~400 unknowns)."""
         n = len(self.meta["states"])
         return "sparse" if n >= SPARSE_FROM and "jac_pattern" in self.meta else "dense"
 
