@@ -225,6 +225,28 @@ def profile_simulate(model, rtol: float, atol: float) -> dict[str, float]:
 # ---------------------------------------------------------------------------------------------
 
 
+def batch_rows(model, rtol: float, atol: float) -> list[dict[str, Any]]:
+    """K parameter sets (Ra stepped by 1e-4, as a finite-difference Jacobian does) in one
+    stacked integration (``simulate_batch``) against K solo runs, same tolerances; time per
+    member and the largest difference of the final supply current from the solo runs."""
+    from circuitsim.solve.batch import simulate_batch
+
+    out = []
+    for k in (8, 16):
+        sets = [{"Ra": 1.1 * (1 + 1e-4 * j)} for j in range(k)]
+        t_solo, solo = best_of(2, lambda sets=sets: [model.simulate(
+            stop=T_STOP, params=q, rtol=rtol, atol=atol) for q in sets])
+        t_batch, batch = best_of(2, lambda sets=sets: simulate_batch(
+            model, sets, stop=T_STOP, rtol=rtol, atol=atol))
+        diff = max(abs(a["i_total"][-1] - b["i_total"][-1]) for a, b in zip(batch, solo,
+                                                                            strict=True))
+        out.append({"tool": "circuitsim batch", "settings": f"K = {k}, per member",
+                    "time": t_batch / k, "i8": float("nan"), "err": float("nan"),
+                    "note": f"{t_solo / t_batch:.2f}x faster than {k} solo runs; final "
+                            f"current within {diff:.1e} A of them"})
+    return out
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--json", help="also write the results to this JSON file")
@@ -322,6 +344,7 @@ def main(argv: list[str] | None = None) -> int:
                      "time": t_sparse, "i8": float("nan"), "err": float("nan"),
                      "note": "no grid: time only"})
         sparse = t_sparse
+        rows += batch_rows(model, chosen["rtol"], chosen["atol"])
 
     # --- LSODA -----------------------------------------------------------------------------
     lrows = []

@@ -22,6 +22,7 @@ from circuitsim.solve.result import SimResult, Status
 # the studies load on first use, so that ``import circuitsim`` stays light
 _LAZY = {
     "simulate": ("circuitsim.solve.integrate", "simulate"),
+    "simulate_batch": ("circuitsim.solve.batch", "simulate_batch"),
     "sweep": ("circuitsim.studies.sweep", "sweep"),
     "fit": ("circuitsim.loop.fit", "fit"),
     "diagnose": ("circuitsim.loop.diagnose", "diagnose"),
@@ -60,5 +61,6 @@ __all__ = [
     "load",
     "load_record",
     "simulate",
+    "simulate_batch",
     "sweep",
 ]

@@ -26,7 +26,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.fft
 
 __all__ = ["Harmonic", "Ripple", "dominant_ripple", "harmonic", "resample_uniform",
            "ripple_summary", "spectrum"]
@@ -224,6 +223,8 @@ def spectrum(t: np.ndarray, x: np.ndarray, window: str = "hann") -> tuple[np.nda
     # Periodic (fftbins) window: the DFT of a periodic window has exact zeros at the
     # neighbouring bins, which is the intended spectral-analysis behaviour.
     w = _window(window, n)
+    import scipy.fft  # here, not at import: 0.25 s that a run without spectra never needs
+
     amp = np.abs(scipy.fft.rfft(xu * w)) / np.sum(w)
     # Fold negative frequencies onto positive ones; DC and (for even n) Nyquist have
     # no mirror image.
@@ -266,6 +267,8 @@ def _fft_peak_frequency(t: np.ndarray, x: np.ndarray, near: float | None, rel_ba
     xu = xu - np.polyval(np.polyfit(k, xu, 1), k)
     nfft = _PAD_FACTOR * (1 << (n - 1).bit_length())
     w = _window("hann", n)
+    import scipy.fft
+
     mag = np.abs(scipy.fft.rfft(xu * w, nfft))
     freqs = scipy.fft.rfftfreq(nfft, duration / (n - 1))
 
@@ -603,6 +606,8 @@ def ripple_summary(t: np.ndarray, x: np.ndarray) -> Ripple:
     dev = xu - np.mean(xu)
     if float(np.std(dev)) <= _NO_RIPPLE_REL_RMS * max(scale, np.finfo(float).tiny):
         return Ripple("none", mean)
+    import scipy.fft
+
     power = np.abs(scipy.fft.rfft(dev))[1:] ** 2
     k, p = fisher_g_test(power)
     duration = float(tu[-1] - tu[0])

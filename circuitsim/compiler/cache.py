@@ -5,10 +5,12 @@ A second run of the same topology imports the module without touching sympy.
 
 from __future__ import annotations
 
+import builtins
 import hashlib
-import importlib.util
 import json
+import marshal
 import os
+import stat
 import sys
 from pathlib import Path
 from types import ModuleType
@@ -48,30 +50,107 @@ def cache_key(topology: str) -> str:
     return "m" + hashlib.sha256(raw.encode()).hexdigest()[:24]
 
 
-def store(key: str, source: str, meta: dict) -> None:
-    """Write the module and metadata atomically (a killed run leaves no half file)."""
+# Models derived in this process, for a cache folder that cannot be used (see _usable).
+_MEMORY: dict[str, tuple[str, dict]] = {}
+_WARNED: set[str] = set()
+
+
+def _unsafe(d: Path) -> str | None:
+    """Why the folder must not be trusted with code that will run, or None if it may: it
+    must belong to this user and be writable by no one else (anyone who can write there
+    could plant a module that runs at the next cache hit)."""
+    if not hasattr(os, "getuid"):  # Windows: per-user profile folders, no POSIX modes
+        return None
+    st = d.stat()
+    if st.st_uid != os.getuid():
+        return f"it belongs to user id {st.st_uid}, not to you"
+    if st.st_mode & 0o022:
+        return f"other users can write to it (mode {stat.S_IMODE(st.st_mode):o})"
+    return None
+
+
+def _usable() -> Path | None:
+    """The cache folder, created private (0700) if missing; None if it is unsafe, with one
+    warning per folder saying what to do."""
     d = cache_dir()
-    d.mkdir(parents=True, exist_ok=True)
-    for suffix, text in ((".py", source), (".json", json.dumps(meta))):
-        atomic_write(d / f"{key}{suffix}", text)
+    try:
+        d.parent.mkdir(parents=True, exist_ok=True)
+        d.mkdir(mode=0o700, exist_ok=True)
+        why = _unsafe(d)
+    except OSError as exc:
+        why = f"it cannot be used ({exc.strerror})"
+    if why is None:
+        return d
+    if str(d) not in _WARNED:
+        import warnings
+
+        from circuitsim.errors import CircuitWarning
+
+        _WARNED.add(str(d))
+        warnings.warn(f"model cache {d} is not used: {why}. Compiled models are kept in memory "
+                      f"only; point CIRCUITSIM_CACHE at a folder only you can write "
+                      f"(chmod 700)", CircuitWarning, stacklevel=4)
+    return None
+
+
+def _digest(*parts: bytes) -> str:
+    h = hashlib.sha256()
+    for part in parts:
+        h.update(hashlib.sha256(part).digest())
+    return h.hexdigest()
+
+
+def store(key: str, source: str, meta: dict) -> None:
+    """Write the module, its bytecode, its metadata and their hash atomically (a killed run
+    leaves no half file; a half or edited file fails the hash and is derived again)."""
+    d = _usable()
+    if d is None:
+        _MEMORY[key] = (source, meta)
+        return
+    src = source.encode("utf-8")
+    js = json.dumps(meta).encode("utf-8")
+    code = marshal.dumps(builtins.compile(src, str(d / f"{key}.py"), "exec"))
+    for suffix, data in ((".py", src), (".json", js), (".code", code)):
+        atomic_write(d / f"{key}{suffix}", data)
+    atomic_write(d / f"{key}.sha256", _digest(src, js, code))
+
+
+def _read(d: Path, key: str) -> tuple[bytes, bytes, bytes] | None:
+    """The three files if they are whole, ours, and match the stored hash; else None."""
+    try:
+        parts = []
+        for suffix in (".py", ".json", ".code"):
+            f = d / f"{key}{suffix}"
+            if hasattr(os, "getuid") and f.stat().st_uid != os.getuid():
+                return None
+            parts.append(f.read_bytes())
+        want = (d / f"{key}.sha256").read_text(encoding="utf-8").strip()
+    except (OSError, UnicodeDecodeError):
+        return None
+    return (parts[0], parts[1], parts[2]) if _digest(*parts) == want else None
 
 
 def load_cached(key: str) -> tuple[ModuleType, dict] | None:
-    d = cache_dir()
-    py, js = d / f"{key}.py", d / f"{key}.json"
-    if not (py.exists() and js.exists()):
+    """The cached module and metadata of ``key``, or None (then the caller derives again):
+    nothing runs unless its content matches the hash written with it."""
+    if key in _MEMORY:
+        source, meta = _MEMORY[key]
+        return _module(key, builtins.compile(source, f"<circuitsim model {key}>", "exec")), meta
+    d = _usable()
+    got = _read(d, key) if d is not None else None
+    if got is None:
         return None
+    _, js, code = got
     try:
-        meta = json.loads(js.read_text(encoding="utf-8"))
-        return import_module(key, py), meta
-    except (OSError, ValueError, SyntaxError):
+        meta = json.loads(js)
+        return _module(key, marshal.loads(code)), meta
+    except (ValueError, TypeError, EOFError, SyntaxError):
         return None
 
 
-def import_module(key: str, path: Path) -> ModuleType:
-    """Import a generated module from its file (so Python caches its bytecode too)."""
-    spec = importlib.util.spec_from_file_location(f"circuitsim_generated_{key}", path)
-    assert spec is not None and spec.loader is not None
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
+def _module(key: str, code) -> ModuleType:
+    """A module object running ``code`` (the verified bytecode; no import machinery, so
+    no stray __pycache__ file is ever consulted)."""
+    mod = ModuleType(f"circuitsim_generated_{key}")
+    exec(code, mod.__dict__)  # noqa: S102 - our own generated code, hash-checked
     return mod

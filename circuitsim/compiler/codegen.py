@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from typing import Any
 
-CODEGEN_VERSION = "4"
+CODEGEN_VERSION = "8"
 
 
 def _printers():
@@ -59,17 +59,56 @@ def _names(dae) -> dict:
     return m
 
 
-def _block(exprs: list, printer, indent: str, assign: list[str]) -> list[str]:
-    """CSE over exprs, then lines ``assign[k] = <expr k>``."""
+def _block(exprs: list, printer, indent: str, assign: list[str], op: str = "=") -> list[str]:
+    """Lines ``assign[k] = <expr k>``, with common subexpressions of the non-polynomial
+    expressions (functions, tables, fractional powers) computed once. Polynomials in the
+    unknowns and parameters -- nearly every equation of a network -- share too little for
+    the search to pay (it was most of the compile time of large circuits)."""
     import sympy as sp
 
-    subs, reduced = sp.cse(exprs, symbols=sp.numbered_symbols("c"), optimizations="basic")
+    heavy = [k for k, e in enumerate(exprs) if not _polynomial(e)]
     lines = []
-    for sym, val in subs:
-        lines.append(f"{indent}{sym} = {printer.doprint(val)}")
+    reduced = list(exprs)
+    if heavy:
+        subs, red = sp.cse([exprs[k] for k in heavy], symbols=sp.numbered_symbols("c"),
+                           order="none")
+        for sym, val in subs:
+            lines.append(f"{indent}{sym} = {_print(val, printer)}")
+        for k, e in zip(heavy, red, strict=True):
+            reduced[k] = e
     for target, e in zip(assign, reduced, strict=True):
-        lines.append(f"{indent}{target} = {printer.doprint(e)}")
+        lines.append(f"{indent}{target} {op} {_print(e, printer)}")
     return lines
+
+
+def _polynomial(e) -> bool:
+    """Only sums, products and integer powers of symbols and numbers."""
+    if e.is_Symbol or e.is_Number:
+        return True
+    if e.is_Add or e.is_Mul:
+        return all(_polynomial(a) for a in e.args)
+    if e.is_Pow:
+        return e.exp.is_Integer and _polynomial(e.base)
+    return False
+
+
+def _print(e, printer) -> str:
+    """Python source of e: sums, products, integer powers, symbols and numbers written
+    directly (sympy's printers cost ~0.1-0.2 ms an expression, which dominated code
+    generation at a few thousand unknowns); everything else through ``printer``."""
+    if e.is_Symbol:
+        return e.name
+    if e.is_Integer:
+        return str(int(e))
+    if e.is_Float:
+        return repr(float(e))
+    if e.is_Add:
+        return "(" + " + ".join(_print(a, printer) for a in e.args) + ")"
+    if e.is_Mul:
+        return "(" + "*".join(_print(a, printer) for a in e.args) + ")"
+    if e.is_Pow and e.exp.is_Integer:
+        return f"({_print(e.base, printer)})**({int(e.exp)})"
+    return f"({printer.doprint(e)})"
 
 
 def _unpack(n: int, prefix: str, src: str, indent: str, used: set[str]) -> list[str]:
@@ -81,61 +120,159 @@ def _unpack(n: int, prefix: str, src: str, indent: str, used: set[str]) -> list[
     return [f"{indent}{', '.join(names)} = {src}"]
 
 
-def generate(dae) -> tuple[str, dict[str, Any]]:
-    """Source of the generated module and its metadata (JSON-serialisable)."""
+def _derivatives(F: list, Y: list, YP: list, t) -> tuple[dict, dict, list]:
+    """dF/dy and dF/dy' at their structural nonzeros only (each equation is differentiated
+    by the few unknowns it names, never by all n), and dF/dt."""
     import sympy as sp
 
+    ypos = {s: j for j, s in enumerate(Y)}
+    yppos = {s: j for j, s in enumerate(YP)}
+    fy: dict[tuple[int, int], Any] = {}
+    fyp: dict[tuple[int, int], Any] = {}
+    for i, f in enumerate(F):
+        for s in sorted(f.free_symbols, key=lambda s: s.name):
+            target, j = (fy, ypos[s]) if s in ypos else (fyp, yppos.get(s))
+            if j is None:
+                continue
+            # only the terms that name s (a network equation is a short sum of products)
+            terms = f.args if f.is_Add else (f,)
+            d = sp.Add(*[_term_diff(a, s) for a in terms if s in a.free_symbols])
+            if d != 0:
+                target[(i, j)] = d
+    return fy, fyp, [sp.diff(f, t) for f in F]
+
+
+def _term_diff(a, s):
+    """d a / d s, directly for s and c*s with c free of s (most terms of a network)."""
+    import sympy as sp
+
+    if a == s:
+        return sp.Integer(1)
+    if a.is_Mul and a.args.count(s) == 1:
+        rest = [f for f in a.args if f != s]
+        if not any(s in f.free_symbols for f in rest):
+            return sp.Mul(*rest)
+    return sp.diff(a, s)
+
+
+def _linear_term(a, ypos: dict, yppos: dict):
+    """(0 for y / 1 for y', column, coefficient) if a = coefficient * one unknown or
+    derivative, the coefficient free of every unknown, derivative and t; else None."""
+    import sympy as sp
+
+    factors = a.args if a.is_Mul else (a,)
+    hits = [f for f in factors if f in ypos or f in yppos]
+    if len(hits) != 1:
+        return None
+    s = hits[0]
+    rest = [f for f in factors if f is not s]
+    if any(q.name == "t" or q in ypos or q in yppos
+           for f in rest for q in f.free_symbols):
+        return None
+    return (0, ypos[s]) if s in ypos else (1, yppos[s]), sp.Mul(*rest)
+
+
+def _linear_functions(F: list, Y: list, YP: list, n: int, n_par: int, scalar):
+    """F = Ly(p) y + Lyp(p) y' + rest(t, y, y', p): the coefficient matrices' values as a
+    function of the parameters alone (``linear``) and the remaining terms (``rest``), which
+    for a network are a few sources and nonlinear parts. The model evaluates the linear part
+    as a sparse matrix product, so the per-call cost of a large network is not n lines of
+    Python (the full ``residual`` stays, with the same values, for small models)."""
+    import sympy as sp
+
+    ypos = {s: j for j, s in enumerate(Y)}
+    yppos = {s: j for j, s in enumerate(YP)}
+    coef: list[dict] = [{}, {}]
+    rest_rows, rest_exprs = [], []
+    for i, f in enumerate(F):
+        other = []
+        for a in f.args if f.is_Add else (f,):
+            hit = _linear_term(a, ypos, yppos)
+            if hit is None:
+                other.append(a)
+            else:
+                (kind, j), c = hit
+                coef[kind][(i, j)] = coef[kind].get((i, j), 0) + c
+        if other:
+            rest_rows.append(i)
+            rest_exprs.append(sp.Add(*other))
+    ly, lyp = coef
+    src = _body("linear", "p", [*ly.values(), *lyp.values()],
+                [f"Ly[{k}]" for k in range(len(ly))] + [f"Lyp[{k}]" for k in range(len(lyp))],
+                n, n_par, scalar, pre=[f"        Ly = numpy.zeros({len(ly)})",
+                                       f"        Lyp = numpy.zeros({len(lyp)})"],
+                post=["        return Ly, Lyp"], fail="Ly[:] = Lyp[:] = math.nan")
+    src += _body("rest", "t, y, yp, res, p", rest_exprs, [f"res[{i}]" for i in rest_rows],
+                 n, n_par, scalar, fail="res[:] = math.nan", add=True)
+    meta = {"ly_pattern": [[i for i, _ in ly], [j for _, j in ly]],
+            "lyp_pattern": [[i for i, _ in lyp], [j for _, j in lyp]]}
+    return src, meta
+
+
+def _pattern(fy: dict, fyp: dict) -> list[tuple[int, int]]:
+    """The Jacobian's nonzeros (i, j) in compressed-sparse-column order (the order IDA's
+    sparse solver stores them in)."""
+    return sorted(set(fy) | set(fyp), key=lambda ij: (ij[1], ij[0]))
+
+
+def _outputs(dae, ren: dict) -> tuple[list[str], list]:
     from circuitsim.component import as_expr
 
-    scalar, vector = _printers()
-    ren = _names(dae)
-    n = len(dae.states)
-    F = [as_expr(e).xreplace(ren) for e in dae.equations]
-    Y = [ren[s] for s in dae.states]
-    YP = [ren[s] for s in dae.yp]
-    t = sp.Symbol("t")
-    # A network whose unknowns were all eliminated (sources driving capacitors) has n = 0.
-    Fy = sp.Matrix(F).jacobian(Y) if n else sp.zeros(0, 0)
-    Fyp = sp.Matrix(F).jacobian(YP) if n else sp.zeros(0, 0)
-    Ft = [sp.diff(f, t) for f in F]
-    cj = sp.Symbol("cj")
-    jac_entries = [(i, j, Fy[i, j] + cj * Fyp[i, j]) for i in range(n) for j in range(n)
-                   if Fy[i, j] != 0 or Fyp[i, j] != 0]
-    fy_entries = [(i, j, Fy[i, j]) for i in range(n) for j in range(n) if Fy[i, j] != 0]
-    fyp_entries = [(i, j, Fyp[i, j]) for i in range(n) for j in range(n) if Fyp[i, j] != 0]
     names_out = list(dae.probes) + sorted(dae.exports)
     obs = [as_expr(dae.probes[k] if k in dae.probes else dae.exports[k]).xreplace(ren)
            for k in names_out]
-    init_syms = [s for s in dae.initial]
+    return names_out, obs
+
+
+def _initial(dae, ren: dict) -> tuple[list, list, list]:
+    from circuitsim.component import as_expr
+
+    init_syms = list(dae.initial)
     init_vals = [as_expr(dae.initial[s]).xreplace(ren) for s in init_syms]
     # a key may be an expression (a capacitor's v = p.v - n.v): resolve eliminated symbols
     init_exprs = [as_expr(s).xreplace(dict(dae.solved)).xreplace(ren) for s in init_syms]
+    return init_syms, init_vals, init_exprs
 
-    def body(name: str, args: str, exprs: list, targets: list[str], pre: list[str] = (),
-             post: list[str] = (), vec: bool = False, fail: str = "") -> list[str]:
-        used = {str(s) for e in exprs for s in as_expr(e).free_symbols}
-        lines = [f"    def {name}({args}):"]
-        if vec:
-            lines += [f"        y{k} = Y[{k}]" for k in range(n) if f"y{k}" in used]
-            lines += [f"        yp{k} = YP[{k}]" for k in range(n) if f"yp{k}" in used]
-        else:
-            lines += _unpack(n, "y", "y.tolist()", "        ", used)
-            lines += _unpack(n, "yp", "yp.tolist()", "        ", used)
-        lines += _unpack(len(dae.params), "p", "p", "        ", used)
-        lines += list(pre)
-        if fail:
-            # Scalar code runs on Python floats, which raise where numpy would give inf or
-            # nan (x**n/x at x = 0, log(0), sqrt(-1)): the solver gets NaN instead -- a failed
-            # step it can retry smaller, or a clear "not finite" error -- never a traceback
-            lines += ["        try:"]
-            lines += _block(exprs, scalar, "            ", targets) or ["            pass"]
-            lines += ["        except (ArithmeticError, ValueError, TypeError):", f"            {fail}"]
-        else:
-            lines += _block(exprs, vector if vec else scalar, "        ", targets)
-        lines += list(post) or ["        return None"]
-        return lines
 
-    src = ["# Generated by circuitsim.codegen: do not edit. One module per topology.",
+def _body(name: str, args: str, exprs: list, targets: list[str], n: int, n_params: int,
+          printer, pre: list[str] = (), post: list[str] = (), vec: bool = False,
+          fail: str = "", cse: bool = True, add: bool = False) -> list[str]:
+    """One generated function: unpack the arguments it uses, evaluate, store."""
+    from circuitsim.component import as_expr
+
+    used = {str(s) for e in exprs for s in as_expr(e).free_symbols}
+    lines = [f"    def {name}({args}):"]
+    if vec:
+        lines += [f"        y{k} = Y[{k}]" for k in range(n) if f"y{k}" in used]
+        lines += [f"        yp{k} = YP[{k}]" for k in range(n) if f"yp{k}" in used]
+    else:
+        lines += _unpack(n, "y", "y.tolist()", "        ", used)
+        lines += _unpack(n, "yp", "yp.tolist()", "        ", used)
+    lines += _unpack(n_params, "p", "p", "        ", used)
+    lines += list(pre)
+    block = _block if cse else _plain
+    op = "+=" if add else "="  # accumulate into the targets, or set them
+    if fail:
+        # Scalar code runs on Python floats, which raise where numpy would give inf or
+        # nan (x**n/x at x = 0, log(0), sqrt(-1)): the solver gets NaN instead -- a failed
+        # step it can retry smaller, or a clear "not finite" error -- never a traceback
+        lines += ["        try:"]
+        lines += block(exprs, printer, "            ", targets, op) or ["            pass"]
+        lines += ["        except (ArithmeticError, ValueError, TypeError):", f"            {fail}"]
+    else:
+        lines += block(exprs, printer, "        ", targets, op)
+    lines += list(post) or ["        return None"]
+    return lines
+
+
+def _plain(exprs: list, printer, indent: str, assign: list[str], op: str = "=") -> list[str]:
+    """Lines ``assign[k] = <expr k>`` without common-subexpression search (for many small,
+    independent outputs, where the search costs more than it saves)."""
+    return [f"{indent}{target} {op} {_print(e, printer)}"
+            for target, e in zip(assign, exprs, strict=True)]
+
+
+_HEADER = ["# Generated by circuitsim.codegen: do not edit. One module per topology.",
            "import functools", "import math", "import numpy", "", "",
            "def _real(v):",
            "    # a constant folded by Python (a negative number to a fractional power) is",
@@ -143,30 +280,103 @@ def generate(dae) -> tuple[str, dict[str, Any]]:
            "    if isinstance(v, complex) or numpy.iscomplexobj(v):",
            "        a = numpy.asarray(v)",
            "        return numpy.where(a.imag == 0, a.real, numpy.nan)",
-           "    return v", "", "",
-           "def make(T, TD, TV, TDV):"]
-    src += body("residual", "t, y, yp, res, p", F, [f"res[{i}]" for i in range(n)],
-                fail="res[:] = math.nan")
-    src += body("jac", "t, y, yp, res, cj, JJ, p", [e for _, _, e in jac_entries],
-                [f"JJ[{i}, {j}]" for i, j, _ in jac_entries], fail="JJ[:, :] = math.nan")
-    src += body("parts", "t, y, yp, p", [e for *_, e in fy_entries] +
-                [e for *_, e in fyp_entries] + Ft,
-                [f"Fy[{i}, {j}]" for i, j, _ in fy_entries] +
-                [f"Fyp[{i}, {j}]" for i, j, _ in fyp_entries] + [f"Ft[{i}]" for i in range(n)],
-                pre=[f"        Fy = numpy.zeros(({n}, {n}))", f"        Fyp = numpy.zeros(({n}, {n}))",
-                     f"        Ft = numpy.zeros({n})"],
-                post=["        return Fy, Fyp, Ft"],
-                fail="Fy[:, :] = Fyp[:, :] = Ft[:] = math.nan")
-    src += body("observe", "t, Y, YP, p", obs, [f"out[{k}]" for k in range(len(obs))],
-                pre=[f"        out = [None] * {len(obs)}"],
-                post=["        return [_real(v) for v in out]"], vec=True)
-    src += body("initial", "t, y, yp, p", init_vals + init_exprs,
-                [f"out[{k}]" for k in range(2 * len(init_vals))],
-                pre=[f"        out = [0.0] * {2 * len(init_vals)}"], post=["        return out"],
-                fail=f"out = [math.nan] * {2 * len(init_vals)}")
-    src += ["    return residual, jac, parts, observe, initial", ""]
+           "    return v", "", ""]
+
+
+_OBSERVE = [
+    "    codes = {}",
+    "",
+    "    def observe(t, Y, YP, p, which=None):",
+    "        env = _Names(Y, YP, p)",
+    "        env.update(t=t, TV=TV, TDV=TDV)",
+    "        out = []",
+    "        for k in range(len(OBSERVED)) if which is None else which:",
+    "            if k not in codes:",
+    "                codes[k] = compile(OBSERVED[k], f'<observed {k}>', 'eval')",
+    "            out.append(_real(eval(codes[k], globals(), env)))",
+    "        return out",
+    "",
+]
+
+_NAMES = [
+    "class _Names(dict):",
+    "    # y12 -> Y[12], yp3 -> YP[3], p5 -> p[5], looked up when an expression needs them",
+    "    def __init__(self, Y, YP, p):",
+    "        super().__init__()",
+    "        self.src = {'yp': YP, 'y': Y, 'p': p}",
+    "",
+    "    def __missing__(self, name):",
+    "        for prefix in ('yp', 'y', 'p'):",
+    "            if name.startswith(prefix) and name[len(prefix):].isdigit():",
+    "                v = self[name] = self.src[prefix][int(name[len(prefix):])]",
+    "                return v",
+    "        raise KeyError(name)",
+    "",
+    "",
+]
+
+
+def generate(dae) -> tuple[str, dict[str, Any]]:
+    """Source of the generated module and its metadata (JSON-serialisable).
+
+    The module's ``jac`` fills a flat array with the Jacobian dF/dy + cj dF/dy' at the
+    nonzeros of ``meta["jac_pattern"]`` (compressed-sparse-column order); ``parts`` returns
+    the flat values of dF/dy and dF/dy' (patterns ``fy_pattern``, ``fyp_pattern``) and dF/dt.
+    """
+    import sympy as sp
+
+    from circuitsim.component import as_expr
+
+    scalar, vector = _printers()
+    ren = _names(dae)
+    n, n_par = len(dae.states), len(dae.params)
+    F = [as_expr(e).xreplace(ren) for e in dae.equations]
+    t, cj = sp.Symbol("t"), sp.Symbol("cj")
+    fy, fyp, Ft = _derivatives(F, [ren[s] for s in dae.states], [ren[s] for s in dae.yp], t)
+    pattern = _pattern(fy, fyp)
+    jac_exprs = [fy.get(ij, 0) + cj * fyp.get(ij, 0) for ij in pattern]
+    names_out, obs = _outputs(dae, ren)
+    init_syms, init_vals, init_exprs = _initial(dae, ren)
+    n_init = len(init_vals)
+    src = [*_HEADER, *_NAMES, "def make(T, TD, TV, TDV):"]
+    src += _body("residual", "t, y, yp, res, p", F, [f"res[{i}]" for i in range(n)], n, n_par,
+                 scalar, fail="res[:] = math.nan")
+    src += _body("jac", "t, y, yp, res, cj, JJ, p", jac_exprs,
+                 [f"JJ[{k}]" for k in range(len(pattern))], n, n_par, scalar,
+                 fail="JJ[:] = math.nan")
+    src += _body("parts", "t, y, yp, p", [*fy.values(), *fyp.values(), *Ft],
+                 [f"Fy[{k}]" for k in range(len(fy))] + [f"Fyp[{k}]" for k in range(len(fyp))]
+                 + [f"Ft[{i}]" for i in range(n)], n, n_par, scalar,
+                 pre=[f"        Fy = numpy.zeros({len(fy)})",
+                      f"        Fyp = numpy.zeros({len(fyp)})", f"        Ft = numpy.zeros({n})"],
+                 post=["        return Fy, Fyp, Ft"],
+                 fail="Fy[:] = Fyp[:] = Ft[:] = math.nan")
+    src += _OBSERVE
+    src += _body("initial", "t, y, yp, p", init_vals + init_exprs,
+                 [f"out[{k}]" for k in range(2 * n_init)], n, n_par, scalar,
+                 pre=[f"        out = [0.0] * {2 * n_init}"], post=["        return out"],
+                 fail=f"out = [math.nan] * {2 * n_init}")
+    lin_src, lin_meta = _linear_functions(F, [ren[s] for s in dae.states],
+                                          [ren[s] for s in dae.yp], n, n_par, scalar)
+    src += lin_src
+    src += ["    return residual, jac, parts, observe, initial, linear, rest", ""]
+    # every probe and exported quantity as the source of one vectorised expression, compiled
+    # only when asked for: a circuit of thousands of parts exports tens of thousands of
+    # quantities, and evaluating them all at every output point would cost gigabytes
+    src += ["OBSERVED = ["] + [f"    {_print(e, vector)!r}," for e in obs] + ["]", ""]
+    meta = _meta(dae, names_out, init_syms)
+    meta.update({"jac_nnz": len(pattern), "jac_pattern": [[i for i, _ in pattern],
+                                                          [j for _, j in pattern]],
+                 "fy_pattern": [[i for i, _ in fy], [j for _, j in fy]],
+                 "fyp_pattern": [[i for i, _ in fyp], [j for _, j in fyp]], **lin_meta})
+    return "\n".join(src), meta
+
+
+def _meta(dae, names_out: list[str], init_syms: list) -> dict[str, Any]:
+    from circuitsim.component import as_expr
+
     state_index = {s: k for k, s in enumerate(dae.states)}
-    meta = {
+    return {
         "states": [s.name for s in dae.states],
         "n_diff": dae.n_diff,
         "params": [p.name for p in dae.params],
@@ -179,11 +389,7 @@ def generate(dae) -> tuple[str, dict[str, Any]]:
         "breaks": [[b.kind, [[f, p.name] for f, p in b.fields]] for b in dae.breaks],
         "n_tables": len(dae.tables),
         "report": list(dae.report),
-        "n_equations": n,
-        "jac_nnz": len(jac_entries),
+        "n_equations": len(dae.states),
         "integrals": {s.name: dae.integrals[s.name] for s in dae.states
                       if s.name in dae.integrals},
     }
-    return "\n".join(src), meta
-
-

@@ -110,7 +110,14 @@ def _check(net: Netlist, dom: str, g: nx.MultiGraph, warnings: list[str]) -> Non
                 (" or add a bleed resistor" if dom == "electrical" else
                  " (through a support, damper or inertia)"),
                 first.loc if first else None, first.name if first else None)
-    # Loops made only of independent across sources: over-determined potentials.
+    _source_loops(net, dom, g)
+    _source_cutsets(net, dom, g)
+    if dom != "electrical":
+        _inertias(net, dom, g)
+
+
+def _source_loops(net: Netlist, dom: str, g: nx.MultiGraph) -> None:
+    """Loops made only of independent across sources: over-determined potentials."""
     vg = nx.Graph()
     for a, b, d in g.edges(data=True):
         if d["kind"] != "V":
@@ -125,7 +132,10 @@ def _check(net: Netlist, dom: str, g: nx.MultiGraph, warnings: list[str]) -> Non
                 f"conflict or the loop current is undetermined. Add a series resistance to "
                 f"one of them", c.loc, c.name)
         vg.add_edge(a, b, comp=d["comp"])
-    # Cut-sets made only of independent through sources: the nodes they isolate float.
+
+
+def _source_cutsets(net: Netlist, dom: str, g: nx.MultiGraph) -> None:
+    """Cut-sets made only of independent through sources: the nodes they isolate float."""
     ng = nx.Graph()
     ng.add_nodes_from(g.nodes)
     ng.add_edges_from((a, b) for a, b, d in g.edges(data=True) if d["kind"] != "I")
@@ -142,16 +152,19 @@ def _check(net: Netlist, dom: str, g: nx.MultiGraph, warnings: list[str]) -> Non
                 f"{{{', '.join(sorted(part))}}}: nothing else connects those nodes, so their "
                 f"potentials are undetermined. Add a shunt path (resistor, damper)",
                 c.loc, c.name)
-    if dom != "electrical":
-        for node in g.nodes:
-            if node == REF:
-                continue
-            kinds = {d["kind"] for a, b, d in g.edges(node, data=True)}
-            if "C" not in kinds and "V" not in kinds:
-                comps = _comps(g, {node})
-                c = net.component(comps[0])
-                raise SingularCircuitError(
-                    f"{dom} node '{node}' has no inertia or mass (connected: "
-                    f"{', '.join(comps)}): its speed follows algebraically from the torques, "
-                    f"which is rarely intended. Add an 'inertia' (or 'mass') on '{node}'",
-                    c.loc, c.name)
+
+
+def _inertias(net: Netlist, dom: str, g: nx.MultiGraph) -> None:
+    """A mechanical node with no inertia (or mass) and no speed source."""
+    for node in g.nodes:
+        if node == REF:
+            continue
+        kinds = {d["kind"] for a, b, d in g.edges(node, data=True)}
+        if "C" not in kinds and "V" not in kinds:
+            comps = _comps(g, {node})
+            c = net.component(comps[0])
+            raise SingularCircuitError(
+                f"{dom} node '{node}' has no inertia or mass (connected: "
+                f"{', '.join(comps)}): its speed follows algebraically from the torques, "
+                f"which is rarely intended. Add an 'inertia' (or 'mass') on '{node}'",
+                c.loc, c.name)

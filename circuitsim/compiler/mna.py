@@ -87,197 +87,235 @@ class _Derivatives:
         self.t = t
         self.table: dict[sp.Symbol, sp.Symbol] = {}
         self.unknowns: set[sp.Symbol] = set()
+        self.derivs: set[sp.Symbol] = set()  # the table's values, for O(1) membership
 
     def symbol(self, u: sp.Symbol) -> sp.Symbol:
         if u not in self.table:
             self.table[u] = sp.Symbol(f"der({u.name})", real=True)
+            self.derivs.add(self.table[u])
         return self.table[u]
 
     def __call__(self, e: sp.Expr) -> sp.Expr:
         e = as_expr(e)
-        known = self.unknowns | set(self.table.values())
         out = sp.diff(e, self.t)
-        for s in e.free_symbols & known:
-            out += sp.diff(e, s) * self.symbol(s)
+        for s in e.free_symbols:
+            if s in self.unknowns or s in self.derivs:
+                out += sp.diff(e, s) * self.symbol(s)
         return out
+
+
+class _Assembly:
+    """The growing DAE while components are gathered: unknowns, equations and every name a
+    probe may ask for. One method per stage of ``assemble``."""
+
+    def __init__(self, net: Netlist):
+        self.net = net
+        self.t = sp.Symbol("t", real=True)
+        self.der = _Derivatives(self.t)
+        self.unknowns: list[sp.Symbol] = []
+        self.equations: list[sp.Expr] = []
+        self.origins: list[str] = []
+        self.exports: dict[str, sp.Expr] = {}
+        self.units: dict[str, str] = {}
+        self.initial: dict[sp.Symbol, sp.Expr] = {}
+        self.params: dict[str, sp.Symbol] = {}
+        self.breaks: list[BreakSource] = []
+        self.tables: list[TableData] = []
+        self.potentials: dict[str, sp.Expr] = {}
+        self.integrals: dict[str, sp.Expr] = {}
+        self.integral_domains: dict[str, str] = {}
+        self.flows: dict[str, list[sp.Symbol]] = {}
+
+    def new(self, name: str) -> sp.Symbol:
+        s = sp.Symbol(name, real=True)
+        self.unknowns.append(s)
+        self.der.unknowns.add(s)
+        return s
+
+    def psym(self, name: str) -> sp.Symbol:
+        if name not in self.params:
+            self.params[name] = sp.Symbol(name, real=True)
+        return self.params[name]
+
+    def nodes(self) -> None:
+        """A potential per non-reference node (0 on a reference) and its flow list."""
+        for node, (dom_name, _) in self.net.nodes.items():
+            dom = DOMAINS[dom_name]
+            if node in dom.references:
+                self.potentials[node] = sp.Integer(0)
+            else:
+                self.potentials[node] = self.new(f"{node}.{dom.across}")
+                self.flows[node] = []
+                self.units[f"{node}.{dom.across}"] = dom.across_unit
+            self.exports[f"{node}.{dom.across}"] = self.potentials[node]
+
+    def integral(self, node: str) -> sp.Expr:
+        """The node's integral (a shaft's angle), created when a component first asks."""
+        dom = DOMAINS[self.net.nodes[node][0]]
+        if node in dom.references:
+            return sp.Integer(0)
+        if node not in self.integrals:
+            sym = self.new(f"{node}.{dom.integral}")
+            self.integrals[node] = sym
+            self.equations.append(self.der(sym) - self.potentials[node])
+            self.origins.append(f"{dom.integral} of node {node}")
+            self.exports[f"{node}.{dom.integral}"] = sym
+            self.units[f"{node}.{dom.integral}"] = dom.integral_unit or ""
+            self.integral_domains[sym.name] = dom.name
+        return self.integrals[node]
+
+    def component(self, spec: ComponentSpec) -> None:
+        """A component's equations, initial values, stored energy and exports."""
+        comp, scope = _instantiate(spec, self)
+        for eq in [*comp.bind(scope), *comp.equations(scope)]:
+            self.equations.append(as_expr(eq))
+            self.origins.append(f"{spec.name} ({spec.type})")
+        stored = comp.energy(scope)
+        if stored is not None:
+            self.exports[f"{spec.name}.energy"] = as_expr(stored)
+            self.units[f"{spec.name}.energy"] = "J"
+        for var, val in comp.initial(scope).items():
+            self.initial[var] = as_expr(val)
+        for k, v in scope._exports.items():
+            self.exports[f"{spec.name}.{k}"] = v
+            for port in spec.cls.ports:
+                dom = port.domain
+                if k in (dom.across, dom.through):
+                    self.units.setdefault(f"{spec.name}.{k}", dom.across_unit
+                                          if k == dom.across else dom.through_unit)
+        self.power(spec)
+
+    def power(self, spec: ComponentSpec) -> None:
+        """Power absorbed by the component, in total and per domain (an EMF converts between
+        its electrical and rotational sides; the two parts are what an energy audit needs)."""
+        by_domain: dict[str, sp.Expr] = {}
+        for port in spec.cls.ports:
+            dom, p = port.domain, port.name
+            by_domain[dom.name] = by_domain.get(dom.name, sp.Integer(0)) + \
+                self.exports[f"{spec.name}.{p}.{dom.across}"] * \
+                self.exports[f"{spec.name}.{p}.{dom.through}"]
+        self.exports[f"{spec.name}.power"] = sum(by_domain.values(), sp.Integer(0))
+        self.units[f"{spec.name}.power"] = "W"
+        if len(by_domain) > 1:
+            for dname, pw in by_domain.items():
+                self.exports[f"{spec.name}.power_{dname}"] = pw
+                self.units[f"{spec.name}.power_{dname}"] = "W"
+
+    def balances(self) -> None:
+        """One flow balance (KCL, torque balance) per non-reference node."""
+        for node, fl in self.flows.items():
+            dom = DOMAINS[self.net.nodes[node][0]]
+            self.equations.append(sp.Add(*fl))
+            self.origins.append(f"{'KCL' if dom.name == 'electrical' else 'balance'} at node "
+                                f"{node}")
+
+    def probes(self) -> dict[str, sp.Expr]:
+        """The netlist's probes as expressions of the exports, with their units."""
+        probes = {}
+        for name, probe in self.net.probes.items():
+            missing = sorted(ex.names(probe.node) - set(self.exports))
+            if missing:
+                from difflib import get_close_matches
+
+                close = get_close_matches(missing[0], list(self.exports), n=3)
+                hint = f" (did you mean {', '.join(close)}?)" if close else \
+                    " (probes name nodes as NODE.v / SHAFT.w / SHAFT.phi and components as " \
+                    "NAME.i, NAME.v, NAME.PORT.i, NAME.power)"
+                raise NetlistError(f"probe '{name}' refers to unknown quantity "
+                                   f"'{missing[0]}'{hint}", probe.loc)
+            probes[name] = ex.to_sympy(probe.node, self.exports)
+            if probe.node.kind == "name":
+                self.units[name] = self.units.get(probe.text.strip(), "")
+            elif probe.node.kind == "neg" and probe.node.args[0].kind == "name":
+                self.units[name] = self.units.get(str(probe.node.args[0].value), "")
+        return probes
 
 
 def assemble(net: Netlist) -> Dae:
     """Build the DAE of a netlist (structure only: parameters stay symbols)."""
-    t = sp.Symbol("t", real=True)
-    der = _Derivatives(t)
-    unknowns: list[sp.Symbol] = []
-    equations: list[sp.Expr] = []
-    origins: list[str] = []
-    exports: dict[str, sp.Expr] = {}
-    units: dict[str, str] = {}
-    initial: dict[sp.Symbol, sp.Expr] = {}
-    params: dict[str, sp.Symbol] = {}
-    breaks: list[BreakSource] = []
-    tables: list[TableData] = []
-
-    def new(name: str) -> sp.Symbol:
-        s = sp.Symbol(name, real=True)
-        unknowns.append(s)
-        der.unknowns.add(s)
-        return s
-
-    potentials: dict[str, sp.Expr] = {}
-    integrals: dict[str, sp.Expr] = {}
-    integral_domains: dict[str, str] = {}
-    flows: dict[str, list[sp.Symbol]] = {}
-    for node, (dom_name, _) in net.nodes.items():
-        dom = DOMAINS[dom_name]
-        if node in dom.references:
-            potentials[node] = sp.Integer(0)
-        else:
-            potentials[node] = new(f"{node}.{dom.across}")
-            flows[node] = []
-            units[f"{node}.{dom.across}"] = dom.across_unit
-        exports[f"{node}.{dom.across}"] = potentials[node]
-
-    def integral(node: str) -> sp.Expr:
-        dom = DOMAINS[net.nodes[node][0]]
-        if node in dom.references:
-            return sp.Integer(0)
-        if node not in integrals:
-            sym = new(f"{node}.{dom.integral}")
-            integrals[node] = sym
-            equations.append(der(sym) - potentials[node])
-            origins.append(f"{dom.integral} of node {node}")
-            exports[f"{node}.{dom.integral}"] = sym
-            units[f"{node}.{dom.integral}"] = dom.integral_unit or ""
-            integral_domains[sym.name] = dom.name
-        return integrals[node]
+    asm = _Assembly(net)
+    asm.nodes()
 
     # Behavioural components read other components' quantities: build them last.
     def behavioural(spec: ComponentSpec) -> bool:
         return any(isinstance(d, Expression) for d in spec.cls.declared().values())
 
-    ordered = [c for c in net.components if not behavioural(c)] + \
-        [c for c in net.components if behavioural(c)]
-    for spec in ordered:
-        comp, scope = _instantiate(spec, t, der, new, potentials, flows, integral, params,
-                                   breaks, tables, exports, units)
-        for eq in [*comp.bind(scope), *comp.equations(scope)]:
-            equations.append(as_expr(eq))
-            origins.append(f"{spec.name} ({spec.type})")
-        stored = comp.energy(scope)
-        if stored is not None:
-            exports[f"{spec.name}.energy"] = as_expr(stored)
-            units[f"{spec.name}.energy"] = "J"
-        for var, val in comp.initial(scope).items():
-            initial[var] = as_expr(val)
-        for k, v in scope._exports.items():
-            exports[f"{spec.name}.{k}"] = v
-            for port in spec.cls.ports:
-                dom = port.domain
-                if k in (dom.across, dom.through):
-                    units.setdefault(f"{spec.name}.{k}", dom.across_unit if k == dom.across
-                                     else dom.through_unit)
-        # power absorbed by the component, in total and per domain (an EMF converts between
-        # its electrical and rotational sides; the two parts are what an energy audit needs)
-        by_domain: dict[str, sp.Expr] = {}
-        for port in spec.cls.ports:
-            dom, p = port.domain, port.name
-            by_domain[dom.name] = by_domain.get(dom.name, sp.Integer(0)) + \
-                exports[f"{spec.name}.{p}.{dom.across}"] * \
-                exports[f"{spec.name}.{p}.{dom.through}"]
-        exports[f"{spec.name}.power"] = sum(by_domain.values(), sp.Integer(0))
-        units[f"{spec.name}.power"] = "W"
-        if len(by_domain) > 1:
-            for dname, pw in by_domain.items():
-                exports[f"{spec.name}.power_{dname}"] = pw
-                units[f"{spec.name}.power_{dname}"] = "W"
-    for node, fl in flows.items():
-        dom = DOMAINS[net.nodes[node][0]]
-        equations.append(sp.Add(*fl))
-        origins.append(f"{'KCL' if dom.name == 'electrical' else 'balance'} at node {node}")
-    probes = {}
-    for name, probe in net.probes.items():
-        missing = sorted(ex.names(probe.node) - set(exports))
-        if missing:
-            from difflib import get_close_matches
-
-            close = get_close_matches(missing[0], list(exports), n=3)
-            hint = f" (did you mean {', '.join(close)}?)" if close else \
-                " (probes name nodes as NODE.v / SHAFT.w / SHAFT.phi and components as " \
-                "NAME.i, NAME.v, NAME.PORT.i, NAME.power)"
-            raise NetlistError(f"probe '{name}' refers to unknown quantity '{missing[0]}'{hint}",
-                               probe.loc)
-        probes[name] = ex.to_sympy(probe.node, exports)
-        if probe.node.kind == "name":
-            units[name] = units.get(probe.text.strip(), "")
-        elif probe.node.kind == "neg" and probe.node.args[0].kind == "name":
-            units[name] = units.get(str(probe.node.args[0].value), "")
-    return Dae(t, tuple(unknowns), dict(der.table), tuple(equations), tuple(origins),
-               tuple(params.values()), exports, initial, probes, tuple(tables), tuple(breaks),
-               units, integral_domains)
+    for spec in [c for c in net.components if not behavioural(c)] + \
+            [c for c in net.components if behavioural(c)]:
+        asm.component(spec)
+    asm.balances()
+    probes = asm.probes()
+    return Dae(asm.t, tuple(asm.unknowns), dict(asm.der.table), tuple(asm.equations),
+               tuple(asm.origins), tuple(asm.params.values()), asm.exports, asm.initial,
+               probes, tuple(asm.tables), tuple(asm.breaks), asm.units, asm.integral_domains)
 
 
-def _instantiate(spec: ComponentSpec, t, der, new, potentials, flows, integral, params,
-                 breaks, tables, exports, units) -> tuple[Component, Scope]:
-    def psym(name: str) -> sp.Symbol:
-        if name not in params:
-            params[name] = sp.Symbol(name, real=True)
-        return params[name]
-
+def _instantiate(spec: ComponentSpec, asm: _Assembly) -> tuple[Component, Scope]:
+    """The component object with its declared values as symbols, and its port scope."""
     values: dict[str, Any] = {}
-    decl = spec.cls.declared()
-    for key, d in decl.items():
+    for key, d in spec.cls.declared().items():
         if isinstance(d, Option):
             values[key] = spec.structure[key]
         elif isinstance(d, RecordList):
-            values[key] = [{f: psym(f"{spec.name}.{key}[{i}].{f}") for f in d.fields}
+            values[key] = [{f: asm.psym(f"{spec.name}.{key}[{i}].{f}") for f in d.fields}
                            for i in range(spec.structure[key])]
         elif isinstance(d, Signal):
-            kind, _ = spec.structure[key]
-            prefix = f"{spec.name}.{key}."
-            fields = {n[len(prefix):]: psym(n) for n in spec.values if n.startswith(prefix)}
-            data = spec.tables[0] if kind == "table" else None
-            if data is not None:
-                tables.append(data)
-            wave = WAVEFORMS[kind]()
-            values[key] = wave.expr(t, fields, data)
-            if type(wave).breakpoints is not Waveform.breakpoints:
-                breaks.append(BreakSource(kind, tuple(fields.items())))
+            values[key] = _signal(spec, key, asm)
         elif isinstance(d, Expression):
-            node = ex.parse(spec.structure[key], allow_unit=False)
-            scope_names: dict[str, Any] = dict(exports)
-            scope_names["t"] = t
-            prefix = f"{spec.name}.{key}."
-            scope_names.update({n[len(prefix):]: psym(n) for n in spec.values
-                                if n.startswith(prefix)})
-            missing = sorted(ex.names(node) - set(scope_names))
-            if missing:
-                from difflib import get_close_matches
-
-                close = get_close_matches(missing[0], list(scope_names), n=3)
-                raise NetlistError(
-                    f"expression '{key}' names unknown quantity '{missing[0]}'" +
-                    (f" (did you mean {', '.join(close)}?)" if close else
-                     " (use netlist parameters, t, or quantities such as NODE.v, SHAFT.w, "
-                     "COMP.i)"), spec.loc, spec.name)
-            values[key] = ex.to_sympy(node, scope_names)
+            values[key] = _expression(spec, key, asm)
         else:
-            values[key] = psym(f"{spec.name}.{key}")
+            values[key] = asm.psym(f"{spec.name}.{key}")
     comp = spec.cls(spec.name, values)
     ports: dict[str, PortScope] = {}
     nodes = dict(spec.ports)
     for port in spec.cls.ports:
         node = nodes[port.name]
         dom = port.domain
-        flow = new(f"{spec.name}.{port.name}.{dom.through}")
-        if node in flows:
-            flows[node].append(flow)
-        ports[port.name] = PortScope(dom, potentials[node], flow,
-                                     lambda n=node: integral(n))
-        exports[f"{spec.name}.{port.name}.{dom.across}"] = potentials[node]
-        exports[f"{spec.name}.{port.name}.{dom.through}"] = flow
-        units[f"{spec.name}.{port.name}.{dom.through}"] = dom.through_unit
+        flow = asm.new(f"{spec.name}.{port.name}.{dom.through}")
+        if node in asm.flows:
+            asm.flows[node].append(flow)
+        ports[port.name] = PortScope(dom, asm.potentials[node], flow,
+                                     lambda n=node: asm.integral(n))
+        asm.exports[f"{spec.name}.{port.name}.{dom.across}"] = asm.potentials[node]
+        asm.exports[f"{spec.name}.{port.name}.{dom.through}"] = flow
+        asm.units[f"{spec.name}.{port.name}.{dom.through}"] = dom.through_unit
 
     def make_var(name: str) -> sp.Symbol:
-        return new(f"{spec.name}.{name}")
+        return asm.new(f"{spec.name}.{name}")
 
-    scope = Scope(spec.name, ports, make_var, der, t)
-    return comp, scope
+    return comp, Scope(spec.name, ports, make_var, asm.der, asm.t)
+
+
+def _signal(spec: ComponentSpec, key: str, asm: _Assembly) -> sp.Expr:
+    """A waveform's expression of t; its table and corners are noted."""
+    kind, _ = spec.structure[key]
+    prefix = f"{spec.name}.{key}."
+    fields = {n[len(prefix):]: asm.psym(n) for n in spec.values if n.startswith(prefix)}
+    data = spec.tables[0] if kind == "table" else None
+    if data is not None:
+        asm.tables.append(data)
+    wave = WAVEFORMS[kind]()
+    if type(wave).breakpoints is not Waveform.breakpoints:
+        asm.breaks.append(BreakSource(kind, tuple(fields.items())))
+    return wave.expr(asm.t, fields, data)
+
+
+def _expression(spec: ComponentSpec, key: str, asm: _Assembly) -> sp.Expr:
+    """A behavioural expression over t, its own parameters and other quantities."""
+    node = ex.parse(spec.structure[key], allow_unit=False)
+    scope_names: dict[str, Any] = dict(asm.exports)
+    scope_names["t"] = asm.t
+    prefix = f"{spec.name}.{key}."
+    scope_names.update({n[len(prefix):]: asm.psym(n) for n in spec.values
+                        if n.startswith(prefix)})
+    missing = sorted(ex.names(node) - set(scope_names))
+    if missing:
+        from difflib import get_close_matches
+
+        close = get_close_matches(missing[0], list(scope_names), n=3)
+        raise NetlistError(
+            f"expression '{key}' names unknown quantity '{missing[0]}'" +
+            (f" (did you mean {', '.join(close)}?)" if close else
+             " (use netlist parameters, t, or quantities such as NODE.v, SHAFT.w, "
+             "COMP.i)"), spec.loc, spec.name)
+    return ex.to_sympy(node, scope_names)

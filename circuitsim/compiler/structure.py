@@ -18,6 +18,7 @@ No topology is special-cased: everything works on the equations and their incide
 
 from __future__ import annotations
 
+import heapq
 import zlib
 from collections.abc import Mapping
 from dataclasses import dataclass
@@ -63,7 +64,11 @@ class IndexOneDae:
 
 
 class _System:
-    """Mutable working copy of the equations during reduction."""
+    """Mutable working copy of the equations during reduction.
+
+    ``steps`` records every elimination in order (unknown or derivative -> expression of the
+    variables present at that step); ``resolved()`` composes them once at the end, so an
+    elimination never rewrites the earlier ones (that rewrite made reduction O(N^2))."""
 
     def __init__(self, dae: Dae):
         self.t = dae.t
@@ -72,7 +77,7 @@ class _System:
         self.unknowns: set[sp.Symbol] = set(dae.unknowns)
         self.der: dict[sp.Symbol, sp.Symbol] = dict(dae.der)
         self.anti: dict[sp.Symbol, sp.Symbol] = {d: u for u, d in self.der.items()}
-        self.solved: dict[sp.Symbol, sp.Expr] = {}
+        self.steps: dict[sp.Symbol, sp.Expr] = {}
         self.params = set(dae.params)
         self.report: list[str] = []
 
@@ -83,11 +88,14 @@ class _System:
             self.anti[d] = s
         return self.der[s]
 
+    def is_variable(self, s) -> bool:
+        return s in self.unknowns or s in self.anti
+
     def variables(self) -> set[sp.Symbol]:
         return self.unknowns | set(self.anti)
 
     def incidence(self, e: sp.Expr) -> set[sp.Symbol]:
-        return e.free_symbols & self.variables()
+        return {s for s in e.free_symbols if s in self.unknowns or s in self.anti}
 
     def used(self) -> set[sp.Symbol]:
         out: set[sp.Symbol] = set()
@@ -98,65 +106,180 @@ class _System:
     def differentiate(self, e: sp.Expr) -> sp.Expr:
         """Total time derivative (chain rule over unknowns and their derivatives)."""
         out = sp.diff(e, self.t)
-        for s in self.incidence(e):
+        for s in sorted(self.incidence(e), key=lambda s: s.name):
             out += sp.diff(e, s) * self.der_of(s)
         return out
 
-    def substitute(self, mapping: Mapping[sp.Symbol, sp.Expr]) -> None:
-        self.eqs = [e.xreplace(mapping) for e in self.eqs]
-        self.solved = {k: v.xreplace(mapping) for k, v in self.solved.items()}
-        self.solved.update(mapping)
+    def record(self, mapping: Mapping[sp.Symbol, sp.Expr]) -> None:
+        self.steps.update(mapping)
+
+    def resolved(self) -> dict[sp.Symbol, sp.Expr]:
+        """Every eliminated unknown or derivative as an expression of the final variables.
+
+        A step's expression only names variables still present when it was taken, i.e. ones
+        eliminated later: composing in reverse order resolves each exactly once."""
+        out: dict[sp.Symbol, sp.Expr] = {}
+        for key in reversed(list(self.steps)):
+            e = self.steps[key]
+            hit = {s: out[s] for s in e.free_symbols if s in out}
+            out[key] = e.xreplace(hit) if hit else e
+        return out
 
 
 def _linear_coeff(e: sp.Expr, v: sp.Symbol) -> sp.Expr | None:
     """Coefficient of v if e is linear in v with a constant numeric coefficient."""
-    c = sp.diff(e, v)
+    c = sp.Integer(0)
+    for a in e.args if e.is_Add else (e,):
+        if a == v:
+            c += 1
+        elif a.is_Mul and len(a.args) == 2 and a.args[0].is_Number and a.args[1] == v:
+            c += a.args[0]  # the usual -1*v: no call to diff
+        elif v in a.free_symbols:
+            c += sp.diff(a, v)
     if c.free_symbols or not c.is_number or c == 0:
         return None
     return c
 
 
-def eliminate(sys: _System) -> int:
-    """Solve-and-substitute every equation linear in an unknown with a numeric coefficient.
+def _solve_for(e: sp.Expr, v: sp.Symbol, c: sp.Expr) -> sp.Expr:
+    """v from e = 0, e linear in v with numeric coefficient c. A sum with the single term
+    c*v is rearranged term by term (expand, the general route, dominated elimination)."""
+    if e.is_Add:
+        hits = [a for a in e.args if v in a.free_symbols]
+        if len(hits) == 1 and (hits[0] == v or hits[0] == c * v):
+            others = [a for a in e.args if a is not hits[0]]
+            if c == 1:
+                return sp.Add(*[-a for a in others])
+            if c == -1:
+                return sp.Add(*others)
+            return sp.Add(*[-a / c for a in others])
+    return sp.expand(v - e / c) if len(e.args) < 8 else v - e / c
 
-    Returns how many unknowns were eliminated.
-    """
+
+class _Index:
+    """Incidence bookkeeping for elimination: each live equation's variables and, for each
+    variable, the equations that use it, updated only where a substitution lands."""
+
+    def __init__(self, sys: _System):
+        self.sys = sys
+        self.live: dict[int, sp.Expr] = dict(enumerate(sys.eqs))
+        self.inc: dict[int, set[sp.Symbol]] = {k: sys.incidence(e) for k, e in self.live.items()}
+        self.occ: dict[sp.Symbol, set[int]] = {}
+        for k, vs in self.inc.items():
+            for v in vs:
+                self.occ.setdefault(v, set()).add(k)
+        self.version = dict.fromkeys(self.live, 0)
+
+    def differentiated(self, u: sp.Symbol) -> bool:
+        d = self.sys.der.get(u)
+        return d is not None and bool(self.occ.get(d))
+
+    def users(self, v: sp.Symbol) -> set[int]:
+        out = set(self.occ.get(v, ()))
+        d = self.sys.der.get(v)
+        if d is not None:
+            out |= self.occ.get(d, set())
+        return out
+
+    def set_eq(self, k: int, e: sp.Expr) -> None:
+        for v in self.inc[k]:
+            self.occ[v].discard(k)
+        self.live[k] = e
+        self.inc[k] = self.sys.incidence(e)
+        for v in self.inc[k]:
+            self.occ.setdefault(v, set()).add(k)
+        self.version[k] += 1
+
+    def drop(self, k: int) -> None:
+        for v in self.inc.pop(k):
+            self.occ[v].discard(k)
+        del self.live[k]
+
+
+def _fill(ix: _Index, k: int, mapping: Mapping[sp.Symbol, sp.Expr],
+          new_inc: Mapping[sp.Symbol, set[sp.Symbol]]) -> int:
+    """Change in the number of (equation, variable) incidences if equation k is used to
+    substitute ``mapping`` into every other equation (a fill-in measure, exact up to
+    cancellation)."""
+    delta = -len(ix.inc[k])
+    touched: set[int] = set()
+    for s in mapping:
+        touched |= ix.occ.get(s, set())
+    for f in touched - {k}:
+        inc = ix.inc[f]
+        after = inc - set(mapping)
+        for s in mapping:
+            if s in inc:
+                after |= new_inc[s]
+        delta += len(after) - len(inc)
+    return delta
+
+
+def _candidate(ix: _Index, k: int, v: sp.Symbol):
+    """The substitution that eliminates v with equation k, or None if it is not allowed."""
+    sys = ix.sys
+    e, inc = ix.live[k], ix.inc[k]
+    if sys.der.get(v) in inc:
+        return None
+    c = _linear_coeff(e, v)
+    if c is None:
+        return None
+    rest = _solve_for(e, v, c)
+    rest_inc = sys.incidence(rest)
+    mapping = {v: rest}
+    new_inc = {v: rest_inc}
+    if ix.differentiated(v):
+        # Substituting a state is only exact if its derivative is known too, and that
+        # stays index-preserving only when rest depends on states and t alone.
+        if any(s in sys.anti or not ix.differentiated(s) for s in rest_inc):
+            return None
+        d = sys.differentiate(rest)
+        mapping[sys.der[v]] = d
+        new_inc[sys.der[v]] = sys.incidence(d)
+    return mapping, _fill(ix, k, mapping, new_inc)
+
+
+def _push(ix: _Index, heap: list, k: int) -> None:
+    sys = ix.sys
+    cands = sorted((v for v in ix.inc[k] if v in sys.unknowns),
+                   key=lambda v: (ix.differentiated(v), -v.name.count("."), v.name))
+    for rank, v in enumerate(cands):
+        heapq.heappush(heap, (len(ix.inc[k]), k, rank, ix.version[k], v))
+
+
+def eliminate(sys: _System) -> int:
+    """Solve-and-substitute equations linear in an unknown with a numeric coefficient,
+    as long as the substitution adds no fill-in (Markowitz-like: the total incidence must
+    not grow), smallest equations first. Each step touches only the equations that use the
+    eliminated unknown. Returns how many unknowns were eliminated."""
+    ix = _Index(sys)
+    heap: list = []
+    for k in ix.live:
+        _push(ix, heap, k)
     count = 0
-    while True:
-        used = sys.used()
-        differentiated = {u for u in sys.unknowns if sys.der.get(u) in used}
-        done = False
-        order = sorted(range(len(sys.eqs)), key=lambda k: len(sys.incidence(sys.eqs[k])))
-        for k in order:
-            e = sys.eqs[k]
-            inc = sys.incidence(e)
-            cands = sorted((v for v in inc if v in sys.unknowns),
-                           key=lambda v: (v in differentiated, -v.name.count("."), v.name))
-            for v in cands:
-                c = _linear_coeff(e, v)
-                if c is None or sys.der.get(v) in inc:
-                    continue
-                rest = sp.expand(v - e / c) if len(e.args) < 8 else v - e / c
-                rest_inc = sys.incidence(rest)
-                mapping = {v: rest}
-                if v in differentiated:
-                    # Substituting a state is only exact if its derivative is known too, and
-                    # that stays index-preserving only when rest depends on states and t alone.
-                    if any(s in sys.anti or s not in differentiated for s in rest_inc):
-                        continue
-                    mapping[sys.der[v]] = sys.differentiate(rest)
-                del sys.eqs[k]
-                del sys.origins[k]
-                sys.unknowns.discard(v)
-                sys.substitute(mapping)
-                count += 1
-                done = True
-                break
-            if done:
-                break
-        if not done:
-            sys.eqs = [e for e in sys.eqs]
-            return count
+    while heap:
+        _, k, _, version, v = heapq.heappop(heap)
+        if k not in ix.live or ix.version[k] != version or v not in ix.inc[k] \
+                or v not in sys.unknowns:
+            continue
+        got = _candidate(ix, k, v)
+        if got is None or got[1] > 0:
+            continue
+        mapping = got[0]
+        touched: set[int] = set()
+        for s in mapping:
+            touched |= ix.occ.get(s, set())
+        ix.drop(k)
+        sys.unknowns.discard(v)
+        sys.record(mapping)
+        for f in sorted(touched - {k}):
+            ix.set_eq(f, ix.live[f].xreplace(mapping))
+            _push(ix, heap, f)
+        count += 1
+    keep = sorted(ix.live)
+    sys.eqs = [ix.live[k] for k in keep]
+    sys.origins = [sys.origins[k] for k in keep]
+    return count
 
 
 def _highest(sys: _System, used: set[sp.Symbol]) -> list[sp.Symbol]:
@@ -264,8 +387,7 @@ def dummy_derivatives(sys: _System, B: list[int | None], nominal: Mapping[sp.Sym
         mapping[d] = dd
         sys.report.append(f"dummy derivative: {d.name} becomes algebraic")
     sys.eqs = [e.xreplace(mapping) for e in sys.eqs]
-    sys.solved = {k: v.xreplace(mapping) for k, v in sys.solved.items()}
-    sys.solved.update(mapping)
+    sys.record(mapping)
 
 
 def _num(e: sp.Expr, nominal: Mapping[sp.Symbol, float]) -> float:
@@ -303,7 +425,7 @@ def reduce_index(dae: Dae, nominal: Mapping[sp.Symbol, float]) -> IndexOneDae:
                                    _unmatched(sys))
     states = tuple(diff + alg)
     yp = tuple(sys.der_of(s) for s in states)
-    resolve = dict(sys.solved)
+    resolve = sys.resolved()
     exports = {k: as_expr(v).xreplace(resolve) for k, v in dae.exports.items()}
     probes = {k: as_expr(v).xreplace(resolve) for k, v in dae.probes.items()}
     return IndexOneDae(dae.t, states, yp, len(diff), tuple(sys.eqs), tuple(sys.origins),

@@ -63,12 +63,13 @@ def linearize(model, params: Mapping[str, float] | None = None) -> Linearization
     return Linearization(op, p, Fy, Fyp, samples, tuple(angles))
 
 
-def _observe_batch(model, lin: Linearization, Y: np.ndarray, YP: np.ndarray, p) -> np.ndarray:
+def _observe_batch(model, lin: Linearization, Y: np.ndarray, YP: np.ndarray, p,
+                   out: int) -> np.ndarray:
+    """Output number ``out`` at the columns of Y, YP."""
     _, _, _, observe, _ = model.fns
     with np.errstate(all="ignore"):
-        vals = observe(0.0, Y, YP, p)
-    m = Y.shape[1]
-    return np.array([np.broadcast_to(np.asarray(v, float), (m,)) for v in vals])
+        (v,) = observe(0.0, Y, YP, p, which=[out])
+    return np.broadcast_to(np.asarray(v, float), (Y.shape[1],)).copy()
 
 
 def _output_rows(model, lin: Linearization, out_index: int) -> tuple[np.ndarray, np.ndarray]:
@@ -86,7 +87,7 @@ def _output_rows(model, lin: Linearization, out_index: int) -> tuple[np.ndarray,
         YPs += [np.repeat(lin.op.yp[:, None], 2 * n, axis=1),
                 lin.op.yp[:, None] + eye * hps[:, None]]
         Hs.append(hs)
-    v = _observe_batch(model, lin, np.hstack(Ys), np.hstack(YPs), lin.p)[out_index]
+    v = _observe_batch(model, lin, np.hstack(Ys), np.hstack(YPs), lin.p, out_index)
     v = v.reshape(len(lin.samples), 4 * n)
     dy = (v[:, 0:2 * n:2] - v[:, 1:2 * n:2]) / (2 * np.array(Hs))
     dyp = (v[:, 2 * n::2] - v[:, 2 * n + 1::2]) / (2 * hps)
@@ -154,7 +155,7 @@ def ac(model, input: str, output: str, freqs, params: Mapping[str, float] | None
             residual(0.0, y, lin.op.yp, res, tuple(pp))
             cols.append(res.copy())
             dout += sgn * _observe_batch(model, lin, y[:, None], lin.op.yp[:, None],
-                                         tuple(pp))[out, 0] / (2 * hu * len(lin.samples))
+                                         tuple(pp), out)[0] / (2 * hu * len(lin.samples))
         b += (cols[0] - cols[1]) / (2 * hu * len(lin.samples))
     cy, cyp = _output_rows(model, lin, out)
     freqs = np.atleast_1d(np.asarray(freqs, float))
@@ -200,7 +201,7 @@ def harmonic_response(model, order: int, output: str,
         residual(0.0, Y[:, j], lin.op.yp, res, lin.p)
         ck += res * w[j]
     YP = np.repeat(lin.op.yp[:, None], Y.shape[1], axis=1)
-    out_k = _observe_batch(model, lin, Y, YP, lin.p)[out] @ w
+    out_k = _observe_batch(model, lin, Y, YP, lin.p, out) @ w
     speed = lin.op.yp[lin.angles[0]]
     omega = order * speed
     cy, cyp = _output_rows(model, lin, out)

@@ -11,6 +11,40 @@ import numpy as np
 from circuitsim.errors import SolverError
 
 
+def _newton_matrix(model, t0: float, y: np.ndarray, yp: np.ndarray, p, nd: int):
+    """[dF/dy' of the differential | dF/dy of the algebraic unknowns], dF/dy of the
+    differential ones, and dF/dt: sparse for a large model, dense otherwise."""
+    if model.linsolver == "sparse":
+        import scipy.sparse as sps
+
+        Fy, Fyp, Ft = model.sparse_parts(t0, y, yp, p)
+        return sps.hstack([Fyp[:, :nd], Fy[:, nd:]], format="csc"), Fy[:, :nd], Ft
+    _, _, parts, _, _ = model.fns
+    Fy, Fyp, Ft = parts(t0, y, yp, p)
+    return np.hstack([Fyp[:, :nd], Fy[:, nd:]]), Fy[:, :nd], Ft
+
+
+def _solve(A, b: np.ndarray, least_squares: bool = False) -> np.ndarray:
+    """A x = b, or its least-squares solution if A is singular (or when asked)."""
+    if not isinstance(A, np.ndarray):
+        import scipy.sparse.linalg as spla
+
+        try:
+            if not least_squares:
+                x = spla.splu(A).solve(b)
+                if np.all(np.isfinite(x)):
+                    return x
+        except RuntimeError:  # exactly singular
+            pass
+        return spla.lsqr(A, b, atol=1e-14, btol=1e-14)[0]
+    if least_squares:
+        return np.linalg.lstsq(A, b, rcond=None)[0]
+    try:
+        return np.linalg.solve(A, b)
+    except np.linalg.LinAlgError:
+        return np.linalg.lstsq(A, b, rcond=None)[0]
+
+
 def consistent_initial(model, t0: float, y: np.ndarray, p: tuple[float, ...],
                        yp_guess: np.ndarray | None = None, tol: float = 1e-10,
                        max_iter: int = 60) -> tuple[np.ndarray, np.ndarray]:
@@ -20,11 +54,27 @@ def consistent_initial(model, t0: float, y: np.ndarray, p: tuple[float, ...],
 
     Raises SolverError naming the equation that could not be satisfied.
     """
-    residual, _, parts, _, _ = model.fns
     nd = model.meta["n_diff"]
-    n = len(y)
     y = np.array(y, float)
-    yp = np.zeros(n) if yp_guess is None else np.array(yp_guess, float)
+    yp = np.zeros(len(y)) if yp_guess is None else np.array(yp_guess, float)
+    y, yp = _newton(model, t0, y, yp, p, nd, tol, max_iter)
+    # d/dt F = Ft + Fy y' + Fyp y'' = 0; unknowns: y' of algebraic, y'' of differential.
+    A, Fy_d, Ft = _newton_matrix(model, t0, y, yp, p, nd)
+    # a derivative that does not exist at t0 (x**n/x at x = 0) leaves the algebraic y' at 0:
+    # they only seed the integrator, which corrects them on its first step
+    finite = np.all(np.isfinite(A.data if not isinstance(A, np.ndarray) else A))
+    if nd < len(y) and finite and np.all(np.isfinite(Ft)):
+        rhs = -(Ft + Fy_d @ yp[:nd])
+        yp[nd:] = _solve(A, rhs, least_squares=isinstance(A, np.ndarray))[nd:]
+    return y, yp
+
+
+def _newton(model, t0: float, y: np.ndarray, yp: np.ndarray, p, nd: int, tol: float,
+            max_iter: int) -> tuple[np.ndarray, np.ndarray]:
+    """Damped Newton on F(t0, y, y') = 0 for y' of the differential and y of the algebraic
+    unknowns."""
+    residual = model.fns[0]
+    n = len(y)
     res = np.zeros(n)
 
     def F(y_, yp_):
@@ -32,16 +82,11 @@ def consistent_initial(model, t0: float, y: np.ndarray, p: tuple[float, ...],
         return res.copy()
 
     f = F(y, yp)
-    scale = 1.0 + np.abs(y)
     for _ in range(max_iter):
-        if np.max(np.abs(f)) < tol * (1 + np.max(np.abs(y))):
-            break
-        Fy, Fyp, _ = parts(t0, y, yp, p)
-        A = np.hstack([Fyp[:, :nd], Fy[:, nd:]])
-        try:
-            dz = np.linalg.solve(A, -f)
-        except np.linalg.LinAlgError:
-            dz = np.linalg.lstsq(A, -f, rcond=None)[0]
+        if np.max(np.abs(f), initial=0.0) < tol * (1 + np.max(np.abs(y), initial=0.0)):
+            return y, yp
+        A, _, _ = _newton_matrix(model, t0, y, yp, p, nd)
+        dz = _solve(A, -f)
         step = 1.0
         norm0 = np.linalg.norm(f)
         for _ in range(30):
@@ -53,25 +98,13 @@ def consistent_initial(model, t0: float, y: np.ndarray, p: tuple[float, ...],
                 break
             step *= 0.5
         y, yp, f = y_t, yp_t, f_t
-        scale = 1.0 + np.abs(y)
-    else:
-        worst = int(np.argmax(np.abs(f)))
-        raise SolverError(f"no consistent initial values at t = {t0:g} s: residual of "
-                          f"equation {worst} stays at {f[worst]:.3g} (state "
-                          f"{model.state_names[worst] if worst < n else '?'}). Try "
-                          f"init: op, or give initial values")
-    del scale
-    # d/dt F = Ft + Fy y' + Fyp y'' = 0; unknowns: y' of algebraic, y'' of differential.
-    Fy, Fyp, Ft = parts(t0, y, yp, p)
-    # a derivative that does not exist at t0 (x**n/x at x = 0) leaves the algebraic y' at 0:
-    # they only seed the integrator, which corrects them on its first step
-    if nd < n and np.all(np.isfinite(Fy)) and np.all(np.isfinite(Fyp)) and \
-            np.all(np.isfinite(Ft)):
-        A = np.hstack([Fyp[:, :nd], Fy[:, nd:]])
-        rhs = -(Ft + Fy[:, :nd] @ yp[:nd])
-        sol = np.linalg.lstsq(A, rhs, rcond=None)[0]
-        yp[nd:] = sol[nd:]
-    return y, yp
+    if np.max(np.abs(f), initial=0.0) < tol * (1 + np.max(np.abs(y), initial=0.0)):
+        return y, yp
+    worst = int(np.argmax(np.abs(f)))
+    raise SolverError(f"no consistent initial values at t = {t0:g} s: residual of "
+                      f"equation {worst} stays at {f[worst]:.3g} (state "
+                      f"{model.state_names[worst] if worst < n else '?'}). Try "
+                      f"init: op, or give initial values")
 
 
 def initial_state(model, t0: float, p: tuple[float, ...],

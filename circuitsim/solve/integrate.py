@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import itertools
 from collections.abc import Callable, Mapping
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -27,6 +28,50 @@ def _break_times(model, values: Mapping[str, float], stop: float) -> list[float]
         p = {f: values[name] for f, name in fields}
         out += WAVEFORMS[kind]().breakpoints(p, stop)
     return sorted({b for b in out if 0.0 < b < stop})
+
+
+def make_ida(residual, opts: dict):
+    """An IDA solver; the pattern given with our own Jacobian only sizes the sparse matrix
+    (scikit-sundae warns that its finite-difference use is ignored: that is intended)."""
+    import warnings
+
+    import sksundae as sun
+
+    with warnings.catch_warnings():
+        warnings.filterwarnings("ignore", message="Custom sparse Jacobian approximation")
+        return sun.ida.IDA(residual, **opts)
+
+
+@dataclass(frozen=True)
+class Settings:
+    """One run's integration settings, defaults filled from the netlist's analysis."""
+
+    stop: float  # [s]
+    t_eval: np.ndarray  # [s] output times
+    rtol: float
+    atol: float
+    max_step: float  # [s] 0: unbounded
+    init: str  # 'rest' or 'op'
+
+
+def settings(model, stop: float | None = None, step: float | None = None,
+             t_eval: np.ndarray | None = None, rtol: float | None = None,
+             atol: float | None = None, max_step: float | None = None,
+             init: str | None = None) -> Settings:
+    """Fill the run's settings from the netlist's analysis where not given."""
+    an = model.netlist.analysis
+    stop = float(stop if stop is not None else an.stop)
+    if not stop > 0:
+        raise SolverError("stop time must be positive")
+    init = init or an.init
+    if init not in ("rest", "op"):
+        raise SolverError(f"init must be 'rest' or 'op', not {init!r}")
+    if t_eval is None:
+        h = step or an.step or stop / 20_000
+        t_eval = np.linspace(0.0, stop, round(stop / h) + 1)
+    return Settings(stop, np.asarray(t_eval, float), an.rtol if rtol is None else rtol,
+                    an.atol if atol is None else atol,
+                    an.max_step if max_step is None else max_step, init)
 
 
 def simulate(model, stop: float | None = None, params: Mapping[str, float] | None = None, *,
@@ -50,47 +95,39 @@ def simulate(model, stop: float | None = None, params: Mapping[str, float] | Non
     progress : called with the simulated time [s] after each integrator call (at every
         waveform corner and every ``chunk`` output points); for a progress bar.
     """
-    import sksundae as sun
-
-    an = model.netlist.analysis
-    stop = float(stop if stop is not None else an.stop)
-    if not stop > 0:
-        raise SolverError("stop time must be positive")
-    rtol = an.rtol if rtol is None else rtol
-    atol = an.atol if atol is None else atol
-    max_step = an.max_step if max_step is None else max_step
-    init = init or an.init
+    run = settings(model, stop, step, t_eval, rtol, atol, max_step, init)
     values = model.param_values(params)
     p = tuple(values[n] for n in model.meta["params"])
-    if t_eval is None:
-        h = step or an.step or stop / 20_000
-        n_out = round(stop / h)
-        t_eval = np.linspace(0.0, stop, n_out + 1)
-    t_eval = np.asarray(t_eval, float)
-    residual, jac, _, _, _ = model.fns
-    nd = model.meta["n_diff"]
     n = len(model.state_names)
     if n == 0:  # every unknown was eliminated: the outputs are explicit functions of t
-        empty = np.zeros((0, t_eval.size))
-        return _finite(SimResult(t_eval, empty, empty, (), Status.OK, "", 0, 0, model, p))
+        empty = np.zeros((0, run.t_eval.size))
+        return _finite(SimResult(run.t_eval, empty, empty, (), Status.OK, "", 0, 0, model, p))
+    start = consistent_start(model, run, params, p)
+    if isinstance(start, str):
+        return SimResult(run.t_eval[:0], np.zeros((n, 0)), np.zeros((n, 0)),
+                         model.state_names, Status.INIT_FAILED, start, 0, 0, model, p)
+    rec = Recorder(keep_after, decimate, progress)
+    status, detail, nfev, njev = _integrate(model, run, p, corners(model, values, run.stop),
+                                            start, rec, chunk)
+    t_all, y_all, yp_all = rec.arrays(n)
+    return _finite(SimResult(t_all, y_all, yp_all, model.state_names, status, detail, nfev,
+                             njev, model, p))
+
+
+def consistent_start(model, run: Settings, params: Mapping[str, float] | None, p: tuple
+           ) -> tuple[np.ndarray, np.ndarray] | str:
+    """Consistent (y, y') at t = 0, or why there are none."""
     overridden = frozenset(params or {})
     y0, _ = initial_state(model, 0.0, p, overridden)
-    if init == "op":
-        from circuitsim.solve.op import operating_point
-
-        try:
-            y0 = operating_point(model, params).y
-        except SolverError as exc:
-            return SimResult(t_eval[:0], np.zeros((n, 0)), np.zeros((n, 0)),
-                             model.state_names, Status.INIT_FAILED, exc.bare, 0, 0, model, p)
-    elif init != "rest":
-        raise SolverError(f"init must be 'rest' or 'op', not {init!r}")
     try:
+        if run.init == "op":
+            from circuitsim.solve.op import operating_point
+
+            y0 = operating_point(model, params).y
         y0, yp0 = consistent_initial(model, 0.0, y0, p)
     except SolverError as exc:
-        return SimResult(t_eval[:0], np.zeros((n, 0)), np.zeros((n, 0)), model.state_names,
-                         Status.INIT_FAILED, exc.bare, 0, 0, model, p)
-    if init == "rest":
+        return exc.bare
+    if run.init == "rest":
         ignored = check_initial(model, 0.0, y0, yp0, p, overridden)
         if ignored:
             import warnings
@@ -98,86 +135,151 @@ def simulate(model, stop: float | None = None, params: Mapping[str, float] | Non
             from circuitsim.errors import CircuitWarning
 
             warnings.warn("initial values that conflict with the circuit or with each other "
-                          "were not met: " + "; ".join(ignored), CircuitWarning, stacklevel=3)
-    # Corners closer than IDA can resolve (|tout - t0| ~ 1e-13 t) are merged into one.
+                          "were not met: " + "; ".join(ignored), CircuitWarning, stacklevel=4)
+    return y0, yp0
+
+
+def corners(model, values: Mapping[str, float], stop: float) -> list[float]:
+    """0, the waveform corners, stop; corners closer than IDA can resolve
+    (|tout - t0| ~ 1e-13 t) are merged into one."""
     eps = 1e-11 * stop
     edges = [0.0]
     for b in [*_break_times(model, values, stop), stop]:
         if b - edges[-1] > eps:
             edges.append(b)
     edges[-1] = stop
-    ts, ys, yps = [], [], []
-    nfev = njev = 0
-    y, yp, t_now = y0, yp0, 0.0
-    opts = {"rtol": rtol, "atol": atol, "userdata": p, "jacfn": jac, "max_step": max_step,
-            "max_num_steps": 200_000, "algebraic_idx": list(range(nd, n)) or None}
-    status, detail = Status.OK, ""
-    keep_from = keep_after if keep_after is not None else -np.inf
-    counter = 0
+    return edges
 
-    def record(times: np.ndarray, yy: np.ndarray, yyp: np.ndarray) -> None:
-        nonlocal counter
-        idx = counter + np.arange(times.size)
-        keep = (times >= keep_from) | (idx % decimate == 0)
-        counter += times.size
-        ts.append(times[keep])
-        ys.append(yy[keep])
-        yps.append(yyp[keep])
 
-    first = t_eval[t_eval <= eps]
+class Recorder:
+    """Collects output rows, keeping every ``decimate``-th before ``keep_after``."""
+
+    def __init__(self, keep_after: float | None, decimate: int,
+                 progress: Callable[[float], None] | None = None):
+        self.keep_from = keep_after if keep_after is not None else -np.inf
+        self.progress = progress
+        self.decimate = decimate
+        self.counter = 0
+        self.ts: list[np.ndarray] = []
+        self.ys: list[np.ndarray] = []
+        self.yps: list[np.ndarray] = []
+
+    def __call__(self, times: np.ndarray, yy: np.ndarray, yyp: np.ndarray) -> None:
+        idx = self.counter + np.arange(times.size)
+        keep = (times >= self.keep_from) | (idx % self.decimate == 0)
+        self.counter += times.size
+        self.ts.append(times[keep])
+        self.ys.append(yy[keep])
+        self.yps.append(yyp[keep])
+        if self.progress is not None and times.size:
+            self.progress(float(times[-1]))
+
+    def arrays(self, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        if not self.ts:
+            return np.zeros(0), np.zeros((n, 0)), np.zeros((n, 0))
+        return (np.concatenate(self.ts), np.concatenate(self.ys).T,
+                np.concatenate(self.yps).T)
+
+
+@dataclass(frozen=True)
+class System:
+    """What the corner-to-corner integration needs: the residual, IDA's options, how to
+    restart consistently at a waveform corner, and the unknowns' names (for messages)."""
+
+    residual: object
+    opts: dict
+    restart: object  # (t, y, y') -> consistent (y, y') at t
+    names: tuple[str, ...]
+
+
+def model_system(model, run: Settings, p: tuple) -> System:
+    """The System of one model at parameter vector p."""
+    nd, n = model.meta["n_diff"], len(model.state_names)
+    opts = {"rtol": run.rtol, "atol": run.atol, "userdata": p, "max_step": run.max_step,
+            "max_num_steps": 200_000, "algebraic_idx": list(range(nd, n)) or None,
+            **model.ida_options()}
+
+    def restart(t: float, y: np.ndarray, yp: np.ndarray):
+        return consistent_initial(model, t, y, p, yp_guess=yp)
+
+    return System(model.fns[0], opts, restart, model.state_names)
+
+
+def _integrate(model, run: Settings, p: tuple, edges: list[float],
+               start: tuple[np.ndarray, np.ndarray], record: Recorder, chunk: int
+               ) -> tuple[Status, str, int, int]:
+    return integrate_system(model_system(model, run, p), run, edges, start, record, chunk)
+
+
+def integrate_system(system: System, run: Settings, edges: list[float],
+                     start: tuple[np.ndarray, np.ndarray], record: Recorder, chunk: int
+                     ) -> tuple[Status, str, int, int]:
+    """IDA from corner to corner, restarting with consistent derivatives at each."""
+    eps = 1e-11 * run.stop
+    y, yp = start
+    first = run.t_eval[run.t_eval <= eps]
     if first.size:
-        record(first[:1], y0[None, :], yp0[None, :])
+        record(first[:1], y[None, :], yp[None, :])
+    state = _Segment(y, yp, 0.0, 0, 0)
     for a, b in itertools.pairwise(edges):
-        # each requested time belongs to one segment; one within eps of the corner b is
-        # reported as the state at b
-        mine = t_eval[(t_eval > a + eps) & (t_eval <= b + eps)]
-        inner = mine[mine < b - eps]
-        targets = np.append(inner, b)
-        wanted = np.append(np.ones(inner.size, bool), mine.size > inner.size)
-        labels = np.append(inner, mine[-1] if mine.size > inner.size else b)
-        for lo in range(0, targets.size, chunk):
-            part = targets[lo:lo + chunk]
-            solver = sun.ida.IDA(residual, **opts)
+        detail = _segment(system, run, a, b, eps, state, record, chunk)
+        if detail is None and b < run.stop:  # a waveform corner: consistent derivatives
             try:
-                sol = solver.solve(np.concatenate([[t_now], part]), y, yp)
-            except Exception as exc:  # noqa: BLE001 - the wrapper raises assorted types
-                status = Status.SOLVER_FAILED
-                detail = (f"at t = {t_now:.6g} s the integrator stopped ({exc!r}); try "
-                          f"smaller tolerances or max_step")
-                break
-            nfev += int(sol.nfev or 0)
-            njev += int(sol.njev or 0)
-            got_t, got_y, got_yp = np.asarray(sol.t), np.asarray(sol.y), np.asarray(sol.yp)
-            if part.size == 1 and got_t.size > 1:
-                # a two-point span returns the solver's own steps: keep the end only
-                ok = bool(np.isclose(got_t[-1], part[0], rtol=0, atol=eps))
-                got_t, got_y, got_yp = (np.concatenate([a[:1], a[-1:]]) if ok else a[:1]
-                                        for a in (got_t, got_y, got_yp))
-            done = max(got_t.size - 1, 0)  # row 0 is the start state
-            if done:
-                w = wanted[lo:lo + done]
-                record(labels[lo:lo + done][w], got_y[1:][w], got_yp[1:][w])
-            if not sol.success or done < part.size:
-                t_fail = float(got_t[-1]) if got_t.size else t_now
-                status = Status.SOLVER_FAILED
-                detail = _failure(model, sol, t_fail, rtol, atol)
-                break
-            y, yp, t_now = got_y[-1], got_yp[-1], float(got_t[-1])
-            if progress is not None:
-                progress(t_now)
-        if status is not Status.OK:
-            break
-        if b < stop:  # a waveform corner: restart with consistent derivatives
-            try:
-                y, yp = consistent_initial(model, b, y, p, yp_guess=yp)
+                state.y, state.yp = system.restart(b, state.y, state.yp)
             except SolverError as exc:
-                status, detail = Status.SOLVER_FAILED, exc.bare
-                break
-    t_all = np.concatenate(ts) if ts else np.zeros(0)
-    y_all = np.concatenate(ys).T if ys else np.zeros((n, 0))
-    yp_all = np.concatenate(yps).T if yps else np.zeros((n, 0))
-    return _finite(SimResult(t_all, y_all, yp_all, model.state_names, status, detail, nfev,
-                             njev, model, p))
+                detail = exc.bare
+        if detail is not None:
+            return Status.SOLVER_FAILED, detail, state.nfev, state.njev
+    return Status.OK, "", state.nfev, state.njev
+
+
+@dataclass
+class _Segment:
+    """Where the integration stands: state, time and counters."""
+
+    y: np.ndarray
+    yp: np.ndarray
+    t: float
+    nfev: int
+    njev: int
+
+
+def _segment(system: System, run: Settings, a: float, b: float, eps: float,
+             state: _Segment, record: Recorder, chunk: int) -> str | None:
+    """Integrate over (a, b] in chunks of output times; None, or why it failed."""
+    # each requested time belongs to one segment; one within eps of the corner b is
+    # reported as the state at b
+    t_eval = run.t_eval
+    mine = t_eval[(t_eval > a + eps) & (t_eval <= b + eps)]
+    inner = mine[mine < b - eps]
+    targets = np.append(inner, b)
+    wanted = np.append(np.ones(inner.size, bool), mine.size > inner.size)
+    labels = np.append(inner, mine[-1] if mine.size > inner.size else b)
+    for lo in range(0, targets.size, chunk):
+        part = targets[lo:lo + chunk]
+        try:
+            sol = make_ida(system.residual, system.opts).solve(
+                np.concatenate([[state.t], part]), state.y, state.yp)
+        except Exception as exc:  # noqa: BLE001 - the wrapper raises assorted types
+            return (f"at t = {state.t:.6g} s the integrator stopped ({exc!r}); try "
+                    f"smaller tolerances or max_step")
+        state.nfev += int(sol.nfev or 0)
+        state.njev += int(sol.njev or 0)
+        got_t, got_y, got_yp = np.asarray(sol.t), np.asarray(sol.y), np.asarray(sol.yp)
+        if part.size == 1 and got_t.size > 1:
+            # a two-point span returns the solver's own steps: keep the end only
+            ok = bool(np.isclose(got_t[-1], part[0], rtol=0, atol=eps))
+            got_t, got_y, got_yp = (np.concatenate([x[:1], x[-1:]]) if ok else x[:1]
+                                    for x in (got_t, got_y, got_yp))
+        done = max(got_t.size - 1, 0)  # row 0 is the start state
+        if done:
+            w = wanted[lo:lo + done]
+            record(labels[lo:lo + done][w], got_y[1:][w], got_yp[1:][w])
+        if not sol.success or done < part.size:
+            t_fail = float(got_t[-1]) if got_t.size else state.t
+            return _failure(system.names, sol, t_fail, run.rtol, run.atol)
+        state.y, state.yp, state.t = got_y[-1], got_yp[-1], float(got_t[-1])
+    return None
 
 
 def _finite(res: SimResult) -> SimResult:
@@ -200,13 +302,13 @@ def _finite(res: SimResult) -> SimResult:
     return res
 
 
-def _failure(model, sol, t_fail: float, rtol: float, atol: float) -> str:
+def _failure(names: tuple[str, ...], sol, t_fail: float, rtol: float, atol: float) -> str:
     y = np.asarray(sol.y)
     yp = np.asarray(sol.yp)
     name = "?"
     if y.size:
         rate = np.abs(yp[-1]) / (rtol * np.abs(y[-1]) + atol)
-        name = model.state_names[int(np.argmax(rate))]
+        name = names[int(np.argmax(rate))]
     return (f"at t = {t_fail:.6g} s ({str(sol.message).strip()}); fastest-changing variable: "
             f"{name}. Try smaller tolerances or max_step, check the parameter values, or run "
             f"`circuitsim check NETLIST`")

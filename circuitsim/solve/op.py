@@ -34,21 +34,10 @@ class OperatingPoint:
         return float(self.y[self.names.index(name)])
 
 
-def operating_point(model, params: Mapping[str, float] | None = None, t: float = 0.0,
-                    tol: float = 1e-12, max_iter: int = 100) -> OperatingPoint:
-    """Newton on the averaged residual with y' = 0 except for free integrals (see module)."""
-    from circuitsim.solve.init import initial_state
-
+def _averaged(model, t: float, p: tuple, angles: list[int], samples: np.ndarray):
+    """The residual and its Jacobian parts averaged over the sample shaft angles."""
     residual, _, parts, _, _ = model.fns
-    names = model.state_names
-    n = len(names)
-    p = model.param_vector(params)
-    free = [k for k, s in enumerate(names) if s in model.meta.get("integrals", {})]
-    angles = [k for k in free if model.meta["integrals"][names[k]] == "rotational"]
-    y, _ = initial_state(model, t, p)
-    yp = np.zeros(n)
-    fixed_y = set(free)
-    samples = np.arange(N_AVERAGE) * 2 * np.pi / N_AVERAGE if angles else np.zeros(1)
+    n = len(model.state_names)
     res = np.zeros(n)
 
     def averaged(y_, yp_):
@@ -66,11 +55,41 @@ def operating_point(model, params: Mapping[str, float] | None = None, t: float =
         m = len(samples)
         return f / m, Fy / m, Fyp / m
 
-    cols_y = [k for k in range(n) if k not in fixed_y]
+    return averaged
+
+
+def operating_point(model, params: Mapping[str, float] | None = None, t: float = 0.0,
+                    tol: float = 1e-12, max_iter: int = 100) -> OperatingPoint:
+    """Newton on the averaged residual with y' = 0 except for free integrals (see module)."""
+    from circuitsim.solve.init import initial_state
+
+    names = model.state_names
+    n = len(names)
+    p = model.param_vector(params)
+    free = [k for k, s in enumerate(names) if s in model.meta.get("integrals", {})]
+    angles = [k for k in free if model.meta["integrals"][names[k]] == "rotational"]
+    y, _ = initial_state(model, t, p)
+    samples = np.arange(N_AVERAGE) * 2 * np.pi / N_AVERAGE if angles else np.zeros(1)
+    averaged = _averaged(model, t, p, angles, samples)
+    cols_y = [k for k in range(n) if k not in set(free)]
+    y, yp, f, it = _dc_newton(averaged, y, np.zeros(n), cols_y, free, tol, max_iter, names)
+    if it is not None:
+        return OperatingPoint(y, yp, names, it)
+    worst = int(np.argmax(np.abs(f)))
+    raise SolverError(f"operating point: Newton did not converge in {max_iter} iterations; "
+                      f"largest residual {f[worst]:.3g} in the equation of {names[worst]}. Try "
+                      f"starting from rest (init: rest), or ramp the sources (source stepping)")
+
+
+def _dc_newton(averaged, y: np.ndarray, yp: np.ndarray, cols_y: list[int], free: list[int],
+               tol: float, max_iter: int, names: tuple[str, ...]):
+    """Damped Newton for y (but the free integrals) and y' of the free integrals; returns
+    (y, y', residual, iterations or None if it did not converge)."""
+    n = len(names)
     f, Fy, Fyp = averaged(y, yp)
     for it in range(max_iter):
         if np.max(np.abs(f), initial=0.0) <= tol * (1 + np.max(np.abs(y), initial=0.0)):
-            return OperatingPoint(y, yp, names, it)
+            return y, yp, f, it
         A = np.hstack([Fy[:, cols_y], Fyp[:, free]])
         try:
             dz = np.linalg.solve(A, -f)
@@ -91,10 +110,7 @@ def operating_point(model, params: Mapping[str, float] | None = None, t: float =
                 break
             step *= 0.5
         y, yp, f, Fy, Fyp = y_t, yp_t, f_t, Fy_t, Fyp_t
-    worst = int(np.argmax(np.abs(f)))
-    raise SolverError(f"operating point: Newton did not converge in {max_iter} iterations; "
-                      f"largest residual {f[worst]:.3g} in the equation of {names[worst]}. Try "
-                      f"starting from rest (init: rest), or ramp the sources (source stepping)")
+    return y, yp, f, None
 
 
 def probe_values(model, op: OperatingPoint, params: Mapping[str, float] | None = None,
@@ -109,7 +125,7 @@ def probe_values(model, op: OperatingPoint, params: Mapping[str, float] | None =
         Y[k] += samples
     YP = np.repeat(op.yp[:, None], len(samples), axis=1)
     with np.errstate(all="ignore"):
-        vals = observe(t, Y, YP, p)
+        vals = observe(t, Y, YP, p, which=range(model.meta["n_probes"]))
     names = model.meta["observed"][: model.meta["n_probes"]]
     return {n: float(np.mean(np.broadcast_to(np.asarray(v, float), (len(samples),))))
             for n, v in zip(names, vals, strict=False)}

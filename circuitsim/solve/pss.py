@@ -28,7 +28,7 @@ class PeriodicSteadyState:
 
     def __getitem__(self, name: str) -> np.ndarray:
         out = _output_index(self.model, name)
-        return _observe_batch(self.model, None, self.y, self.yp, self.p)[out]
+        return _observe_batch(self.model, None, self.y, self.yp, self.p, out)
 
     def harmonic(self, name: str, k: int = 1) -> tuple[float, float, float]:
         """(frequency [Hz], amplitude, phase [rad]) of the k-th harmonic of the period, from
@@ -37,6 +37,51 @@ class PeriodicSteadyState:
         m = x.size
         c = 2 / m * np.sum(x * np.exp(-2j * np.pi * k * np.arange(m) / m))
         return k / self.period, float(abs(c)), float(np.angle(c) + np.pi / 2)
+
+
+class _Shooting:
+    """The period map of one circuit: integrate from a state over a time, and the gap
+    between where the orbit ends and where it started."""
+
+    def __init__(self, model, p: tuple, opts: dict, free: list[int], angles: list[int],
+                 order: float, base: np.ndarray, period: float | None):
+        self.model, self.p, self.opts = model, p, opts
+        self.free, self.angles, self.order = free, angles, order
+        self.base, self.period = base, period
+        self.autonomous = period is None
+
+    def flow(self, y0: np.ndarray, t_end: float, grid: np.ndarray | None = None):
+        from circuitsim.solve.init import consistent_initial
+        from circuitsim.solve.integrate import make_ida
+
+        y0, yp0 = consistent_initial(self.model, 0.0, y0, self.p)
+        span = grid if grid is not None else np.array([0.0, 0.5 * t_end, t_end])
+        sol = make_ida(self.model.fns[0], self.opts).solve(span, y0, yp0)
+        if not sol.success:
+            from circuitsim.errors import SolverError
+
+            raise SolverError(f"periodic steady state: the integration over one period failed "
+                              f"({sol.message})")
+        return np.asarray(sol.y), np.asarray(sol.yp)
+
+    def unpack(self, z: np.ndarray) -> tuple[np.ndarray, float]:
+        yy = self.base.copy()
+        yy[self.free] = z[: len(self.free)]
+        return yy, (z[-1] if self.autonomous else self.period)
+
+    def gap(self, z: np.ndarray) -> np.ndarray:
+        y0, t_end = self.unpack(z)
+        ys, _ = self.flow(y0, t_end)
+        r = ys[-1][self.free] - y0[self.free]
+        if self.autonomous:
+            a = self.angles[0]
+            r = np.append(r, ys[-1][a] - y0[a] - 2 * np.pi / self.order)
+        return r
+
+    def scale(self, z: np.ndarray) -> np.ndarray:
+        if self.autonomous:
+            return np.append(1 + np.abs(z[: len(self.free)]), z[-1])
+        return 1 + np.abs(z)
 
 
 def periodic_steady_state(model, params: Mapping[str, float] | None = None, *,
@@ -51,17 +96,29 @@ def periodic_steady_state(model, params: Mapping[str, float] | None = None, *,
     Circuits driven by a periodic source: give ``period`` [s]; unknowns are the differential
     states. The Jacobian of the map is built by finite differences of short integrations.
     """
-    import sksundae as sun
+    shoot, z = _setup(model, params, order, period, rtol, atol)
+    z, r, it = _newton(shoot, z, tol, max_iter)
+    y0, T = shoot.unpack(z)
+    grid = np.arange(samples + 1) * T / samples
+    ys, yps = shoot.flow(y0, T, grid)
+    return PeriodicSteadyState(float(T), grid[:-1], ys[:-1].T, yps[:-1].T, it,
+                               float(np.max(np.abs(r))), model, shoot.p,
+                               order if shoot.autonomous else None)
 
-    from circuitsim.solve.init import consistent_initial, initial_state
 
-    residual, jac, _, _, _ = model.fns
+def _setup(model, params, order: float, period: float | None, rtol: float, atol: float
+           ) -> tuple[_Shooting, np.ndarray]:
+    """The shooting problem and its first guess: the operating point on the section phi = 0
+    with the period of its speed (autonomous), or the state from rest."""
+    from circuitsim.solve.init import initial_state
+
     p = model.param_vector(params)
     nd = model.meta["n_diff"]
     n = len(model.state_names)
     angles, _ = _angles(model)
-    autonomous = period is None
-    if autonomous:
+    opts = {"rtol": rtol, "atol": atol, "userdata": p, "max_num_steps": 500_000,
+            "algebraic_idx": list(range(nd, n)) or None, **model.ida_options()}
+    if period is None:
         if not angles:
             raise ValueError("no shaft angle: give the period of the driving source")
         op = operating_point(model, params)
@@ -69,43 +126,20 @@ def periodic_steady_state(model, params: Mapping[str, float] | None = None, *,
         y[angles] = 0.0
         T = 2 * np.pi / order / op.yp[angles[0]]
         free = [k for k in range(nd) if k not in angles]
-    else:
-        y, _ = initial_state(model, 0.0, p)
-        T = float(period)
-        free = list(range(nd))
-    opts = {"rtol": rtol, "atol": atol, "userdata": p, "jacfn": jac, "max_num_steps": 500_000,
-            "algebraic_idx": list(range(nd, n)) or None}
+        return _Shooting(model, p, opts, free, angles, order, y, None), np.append(y[free], T)
+    y, _ = initial_state(model, 0.0, p)
+    free = list(range(nd))
+    return _Shooting(model, p, opts, free, angles, order, y, float(period)), y[free].copy()
 
-    def flow(y0: np.ndarray, t_end: float, grid: np.ndarray | None = None):
-        y0, yp0 = consistent_initial(model, 0.0, y0, p)
-        span = grid if grid is not None else np.array([0.0, 0.5 * t_end, t_end])
-        sol = sun.ida.IDA(residual, **opts).solve(span, y0, yp0)
-        if not sol.success:
-            from circuitsim.errors import SolverError
 
-            raise SolverError(f"periodic steady state: the integration over one period failed "
-                              f"({sol.message})")
-        return np.asarray(sol.y), np.asarray(sol.yp)
-
-    def gap(y0: np.ndarray, t_end: float) -> np.ndarray:
-        ys, _ = flow(y0, t_end)
-        r = ys[-1][free] - y0[free]
-        if autonomous:
-            r = np.append(r, ys[-1][angles[0]] - y0[angles[0]] - 2 * np.pi / order)
-        return r
-
-    def unpack(z: np.ndarray) -> tuple[np.ndarray, float]:
-        yy = y.copy()
-        yy[free] = z[: len(free)]
-        return yy, (z[-1] if autonomous else T)
-
-    z = np.append(y[free], T) if autonomous else y[free].copy()
-    r = gap(*unpack(z))
+def _newton(shoot: _Shooting, z: np.ndarray, tol: float, max_iter: int):
+    """Newton on the gap with a finite-difference Jacobian of the period map."""
+    r = shoot.gap(z)
     it = 0
     while True:
-        scale = np.append(1 + np.abs(z[: len(free)]), z[-1]) if autonomous else 1 + np.abs(z)
+        scale = shoot.scale(z)
         if np.max(np.abs(r) / scale) < tol:
-            break
+            return z, r, it
         it += 1
         if it > max_iter:
             from circuitsim.errors import SolverError
@@ -118,12 +152,6 @@ def periodic_steady_state(model, params: Mapping[str, float] | None = None, *,
             h = 1e-6 * scale[c]
             zz = z.copy()
             zz[c] += h
-            J[:, c] = (gap(*unpack(zz)) - r) / h
+            J[:, c] = (shoot.gap(zz) - r) / h
         z = z + np.linalg.lstsq(J, -r, rcond=None)[0]
-        r = gap(*unpack(z))
-    y0, T = unpack(z)
-    grid = np.arange(samples + 1) * T / samples
-    ys, yps = flow(y0, T, grid)
-    return PeriodicSteadyState(float(T), grid[:-1], ys[:-1].T, yps[:-1].T, it,
-                               float(np.max(np.abs(r))), model, p,
-                               order if autonomous else None)
+        r = shoot.gap(z)

@@ -46,6 +46,7 @@ class SimResult:
     model: Any = field(repr=False)
     params: tuple[float, ...] = field(repr=False, default=())
     _obs: dict[str, np.ndarray] | None = field(default=None, repr=False)
+    _index: dict[str, int] = field(default_factory=dict, repr=False)
 
     @property
     def success(self) -> bool:
@@ -63,12 +64,20 @@ class SimResult:
     def names(self) -> tuple[str, ...]:
         return tuple(dict.fromkeys((*self.model.meta["observed"], *self.states)))
 
-    def _observed(self) -> dict[str, np.ndarray]:
+    def _observed(self, name: str) -> np.ndarray | None:
+        """One probe or exported quantity over the run, evaluated when first asked for
+        (a large circuit exports tens of thousands; evaluating all would cost gigabytes)."""
         if self._obs is None:
+            self._obs = {}
+            self._index = {k: i for i, k in enumerate(self.model.meta["observed"])}
+        if name not in self._obs:
+            if name not in self._index:
+                return None
             _, _, _, observe, _ = self.model.fns
             try:
                 with np.errstate(all="ignore"):
-                    vals = observe(self.t, self.y, self.yp, self.params)
+                    (v,) = observe(self.t, self.y, self.yp, self.params,
+                                   which=[self._index[name]])
             except (ArithmeticError, ValueError) as exc:
                 from circuitsim.errors import NetlistError
 
@@ -76,15 +85,13 @@ class SimResult:
                                    f"({type(exc).__name__}: {exc}); check the probe "
                                    f"expressions for division by zero",
                                    None) from None
-            n = len(self.t)
-            self._obs = {k: np.broadcast_to(np.asarray(v, float), (n,)).copy()
-                         for k, v in zip(self.model.meta["observed"], vals, strict=True)}
-        return self._obs
+            self._obs[name] = np.broadcast_to(np.asarray(v, float), (len(self.t),)).copy()
+        return self._obs[name]
 
     def __getitem__(self, name: str) -> np.ndarray:
-        obs = self._observed()
-        if name in obs:
-            return obs[name]
+        got = self._observed(name)
+        if got is not None:
+            return got
         if name in self.states:
             return self.y[self.states.index(name)]
         close = difflib.get_close_matches(name, list(self.names), n=4, cutoff=0.5)

@@ -1,0 +1,70 @@
+"""K parameter sets in one stacked integration equal K solo runs (issue 14, item 5)."""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+import pytest
+
+import circuitsim as cs
+from circuitsim.solve.batch import simulate_batch
+
+from conftest import NETLISTS
+
+RC = """
+    components:
+      - {name: V1, type: V, p: a, n: gnd, V: {step: {v1: 2 V, t0: 1 ms, rise: 1 us}}}
+      - {name: R1, type: R, p: a, n: b, R: 1 kohm}
+      - {name: C1, type: C, p: b, n: gnd, C: 1 uF}
+    probes: {vc: C1.v}
+    analysis: {stop: 6 ms, step: 0.05 ms, rtol: 1e-9, atol: 1e-12}
+"""
+
+
+def test_batch_equals_solo_runs_and_the_closed_form(compile_text):
+    """Three resistances and two step times (different waveform corners): each member
+    agrees with its own solo run and with the RC step response."""
+    model = compile_text(RC)
+    sets = [{"R1.R": 500.0}, {"R1.R": 1000.0}, {"R1.R": 2000.0, "V1.V.t0": 2e-3}]
+    batch = simulate_batch(model, sets)
+    assert len(batch) == 3
+    for q, res in zip(sets, batch, strict=True):
+        solo = model.simulate(params=q)
+        assert res.success and solo.success
+        np.testing.assert_array_equal(res.t, solo.t)
+        tau = q["R1.R"] * 1e-6
+        t0 = q.get("V1.V.t0", 1e-3)
+        # the 1 us ramp shifts the response by half its length
+        after = res.t > t0 + 1e-6
+        exact = 2 * (1 - np.exp(-(res.t[after] - t0 - 0.5e-6) / tau))
+        assert np.max(np.abs(res["vc"][after] - exact)) < 2e-5  # the ramp's own effect
+        assert np.max(np.abs(res["vc"] - solo["vc"])) < 1e-7
+        assert res.params == solo.params
+
+
+def test_batch_of_the_kim_base_model_matches_solo():
+    """A nonlinear, index-reduced electromechanical model (band solver for small blocks)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        model = cs.compile(cs.load(NETLISTS / "kim2024" / "base.yaml"))
+    sets = [{"Ra": 1.1 * (1 + 1e-3 * k)} for k in range(4)]
+    batch = simulate_batch(model, sets, stop=0.02, rtol=1e-8, atol=1e-10)
+    for q, res in zip(sets, batch, strict=True):
+        solo = model.simulate(stop=0.02, params=q, rtol=1e-8, atol=1e-10)
+        scale = np.max(np.abs(solo["i_total"]))
+        assert np.max(np.abs(res["i_total"] - solo["i_total"])) < 1e-5 * scale
+        assert res["speed"][-1] == pytest.approx(solo["speed"][-1], rel=1e-6)
+    # the members differ by their own parameter, not by solver noise
+    w = [res["speed"][-1] for res in batch]
+    assert np.all(np.diff(w) < 0)  # more armature resistance, less speed
+
+
+def test_an_invalid_member_raises_as_alone(compile_text):
+    from circuitsim.errors import ParameterError
+
+    model = compile_text(RC)
+    with pytest.raises(ParameterError, match=r"R1\.R"):
+        model.simulate(params={"R1.R": -1.0})
+    with pytest.raises(ParameterError, match=r"R1\.R"):
+        simulate_batch(model, [{"R1.R": 1000.0}, {"R1.R": -1.0}])
