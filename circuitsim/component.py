@@ -301,6 +301,16 @@ class Waveform:
         """Times [s] where the waveform has a corner (the integrator restarts there)."""
         return []
 
+    def period(self, p: Mapping[str, float]) -> float:
+        """Period [s] of a periodic waveform (0: not periodic); output sampled coarser than
+        half of it aliases."""
+        return 0.0
+
+    def max_step(self, p: Mapping[str, float]) -> float:
+        """Largest integrator step [s] the waveform allows (0: no bound). A smooth periodic
+        source bounds it so IDA cannot step over what happens within one period."""
+        return 0.0
+
 
 class OnePort(Component):
     """Two pins p, n. v = p.v - n.v; i enters at p and leaves at n."""

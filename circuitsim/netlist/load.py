@@ -32,6 +32,7 @@ from circuitsim.component import (
 from circuitsim.errors import NetlistError, ParameterError, SourceLoc
 from circuitsim.files import atomic_write
 from circuitsim.netlist import expr as ex
+from circuitsim.netlist.pwlfile import pwl_points
 from circuitsim.units import Dim, compatible, explain_mismatch, unit_info
 
 SCHEMA_PATH = Path(__file__).with_name("schema.json")
@@ -574,6 +575,7 @@ class _Builder:
         body = raw[kind]
         prefix = f"{comp}.{key}."
         if kind == "pwl":
+            body = pwl_points(body, path, loc, comp)  # from a CSV file: the inline form
             return kind, self.pwl(body, loc, comp, key, d, values, prefix)
         if kind == "table":
             if not isinstance(body, Mapping) or "file" not in body or "column" not in body:

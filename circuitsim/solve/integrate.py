@@ -16,6 +16,7 @@ import numpy as np
 from circuitsim.errors import SolverError
 from circuitsim.solve.init import check_initial, consistent_initial, initial_state
 from circuitsim.solve.result import SimResult, Status
+from circuitsim.solve.sources import bound_step
 
 
 def _break_times(model, values: Mapping[str, float], stop: float) -> list[float]:
@@ -65,6 +66,7 @@ def simulate(model, stop: float | None = None, params: Mapping[str, float] | Non
         n_out = round(stop / h)
         t_eval = np.linspace(0.0, stop, n_out + 1)
     t_eval = np.asarray(t_eval, float)
+    max_step = bound_step(model, values, stop, t_eval, max_step)  # the sources' step bound
     residual, jac, _, _, _ = model.fns
     nd = model.meta["n_diff"]
     n = len(model.state_names)
