@@ -158,7 +158,7 @@ def assemble(net: Netlist) -> Dae:
         [c for c in net.components if behavioural(c)]
     for spec in ordered:
         comp, scope = _instantiate(spec, t, der, new, potentials, flows, integral, params,
-                                   breaks, tables, exports, units)
+                                   breaks, tables, exports, units, _dims(net))
         for eq in [*comp.bind(scope), *comp.equations(scope)]:
             equations.append(as_expr(eq))
             origins.append(f"{spec.name} ({spec.type})")
@@ -215,8 +215,37 @@ def assemble(net: Netlist) -> Dae:
                units, integral_domains)
 
 
+def _dims(net: Netlist) -> dict[str, Any]:
+    """Dimension of every netlist parameter (None: given without units)."""
+    return {n: g.dim for n, g in net.parameters.items()}
+
+
+def _behavioural(node, names: Mapping[str, Any], unit: str, units: Mapping[str, str],
+                 pdims: Mapping[str, Any], spec: ComponentSpec, key: str) -> sp.Expr:
+    """A behavioural expression in sympy, its dimension checked where it is known
+    (mechanical quantities, parameters and numbers written with units), errors at its netlist
+    line. Voltages and currents are not checked: a node may carry any signal (SPICE's
+    behavioural convention; a position reference as a voltage, say)."""
+    from circuitsim.units import unit_info
+
+    def dim(n: str):
+        u = units.get(n)
+        return pdims.get(n) if not u else None if u in ("V", "A", "W") else unit_info(u)[1]
+
+    env = {n: dim(n) for n in ex.names(node)}
+    env["t"] = unit_info("s")[1]
+    why = ex.unit_mismatch(node, unit, env)
+    if why:
+        raise NetlistError(f"expression '{key}': {why}", spec.loc, spec.name)
+    try:
+        return ex.to_sympy(node, names)
+    except NetlistError as exc:
+        raise NetlistError(f"expression '{key}': {exc.bare}", spec.loc, spec.name) from None
+
+
 def _instantiate(spec: ComponentSpec, t, der, new, potentials, flows, integral, params,
-                 breaks, tables, exports, units) -> tuple[Component, Scope]:
+                 breaks, tables, exports, units, pdims=None) -> tuple[Component, Scope]:
+    pdims = pdims or {}
     def psym(name: str) -> sp.Symbol:
         if name not in params:
             params[name] = sp.Symbol(name, real=True)
@@ -258,7 +287,7 @@ def _instantiate(spec: ComponentSpec, t, der, new, potentials, flows, integral, 
                     (f" (did you mean {', '.join(close)}?)" if close else
                      " (use netlist parameters, t, or quantities such as NODE.v, SHAFT.w, "
                      "COMP.i)"), spec.loc, spec.name)
-            values[key] = ex.to_sympy(node, scope_names)
+            values[key] = _behavioural(node, scope_names, d.unit, units, pdims, spec, key)
         else:
             values[key] = psym(f"{spec.name}.{key}")
     comp = spec.cls(spec.name, values)
