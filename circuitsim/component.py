@@ -74,11 +74,14 @@ class Param:
     positive: bool = False
     nonnegative: bool = False
     integer: bool = False
+    maximum: float | None = None
 
     def violation(self, value: float) -> str | None:
         """Why ``value`` [SI] is invalid, or None."""
         if not math.isfinite(value):
             return "must be a finite number"
+        if self.maximum is not None and value > self.maximum:
+            return f"must not exceed {self.maximum:g}"
         if self.positive and value <= 0:
             return "must be positive"
         if self.nonnegative and value < 0:
