@@ -33,6 +33,7 @@ from circuitsim.errors import NetlistError, ParameterError, SourceLoc
 from circuitsim.files import atomic_write
 from circuitsim.netlist import expr as ex
 from circuitsim.netlist.pwlfile import pwl_points
+from circuitsim.netlist.subckt import flatten, read_subckts
 from circuitsim.units import Dim, compatible, explain_mismatch, unit_info
 
 SCHEMA_PATH = Path(__file__).with_name("schema.json")
@@ -256,6 +257,7 @@ class RawNetlist:
     analysis: dict[str, tuple[Any, SourceLoc]] = field(default_factory=dict)
     title: str = ""
     path: str = ""
+    subckts: dict[str, Any] = field(default_factory=dict)  # subckt.Subckt by name
 
     def copy(self) -> RawNetlist:
         import copy
@@ -328,6 +330,7 @@ def _gather(path: Path, raw: _Raw, stack: tuple[Path, ...]) -> None:
                                _loc(sp, doc["include"], index=i))
         _gather(target, raw, (*stack, path))
     raw.title = str(doc.get("title", raw.title or path.stem))
+    raw.subckts.update(read_subckts(doc, sp))
     params = doc.get("parameters") or {}
     for k in params:
         raw.params[str(k)] = (params[k], _loc(sp, params, key=k))  # later files override
@@ -654,6 +657,7 @@ def build(raw: RawNetlist) -> Netlist:
     """Type a raw netlist (as read, or as patched): the second half of ``load``."""
     import circuitsim_components  # noqa: F401 - fills the registries
 
+    raw = flatten(raw)  # subcircuit instances become scoped components
     path = Path(raw.path)
     params = _order_params(raw)
     nodes: dict[str, tuple[str, SourceLoc]] = {}
