@@ -4,7 +4,18 @@ Each module is one family; each class states ports, parameters with units, and s
 equations, and nothing else. Nothing here imports the solver.
 """
 
-from . import bldc, controlled, diode, emf, mechanical, passive, sources, varistor, waveforms
+from . import (
+    bldc,
+    controlled,
+    diode,
+    drivetrain,
+    emf,
+    mechanical,
+    passive,
+    sources,
+    varistor,
+    waveforms,
+)
 
-__all__ = ["bldc", "controlled", "diode", "emf", "mechanical", "passive", "sources", "varistor",
-           "waveforms"]
+__all__ = ["bldc", "controlled", "diode", "drivetrain", "emf", "mechanical", "passive",
+           "sources", "varistor", "waveforms"]
