@@ -33,12 +33,20 @@ class Domain:
     integral: str | None
     integral_unit: str | None
     references: tuple[str, ...]
+    through_is_power: bool = False  # heat flow is itself a power; T * Q is not one
+
+    def port_power(self, across: Any, through: Any) -> Any:
+        """Power [W] entering a port of this domain."""
+        return through if self.through_is_power else across * through
 
 
 ELECTRICAL = Domain("electrical", "v", "i", "V", "A", None, None, ("gnd", "0"))
 ROTATIONAL = Domain("rotational", "w", "tau", "rad/s", "N*m", "phi", "rad", ("fixed",))
 TRANSLATIONAL = Domain("translational", "v", "f", "m/s", "N", "x", "m", ("fixed",))
-DOMAINS = {d.name: d for d in (ELECTRICAL, ROTATIONAL, TRANSLATIONAL)}
+# Temperatures are absolute [K]; the reference is 0 K (a heat capacity, a fixed temperature
+# or a heat source acts against it, as a capacitor acts against ground).
+THERMAL = Domain("thermal", "T", "Q", "K", "W", None, None, ("absolute_zero",), True)
+DOMAINS = {d.name: d for d in (ELECTRICAL, ROTATIONAL, TRANSLATIONAL, THERMAL)}
 
 
 @dataclass(frozen=True, slots=True)
@@ -59,6 +67,10 @@ def Flange(name: str) -> Port:
 
 def TFlange(name: str) -> Port:
     return Port(name, TRANSLATIONAL)
+
+
+def HeatPort(name: str) -> Port:
+    return Port(name, THERMAL)
 
 
 @dataclass(frozen=True, slots=True)

@@ -13,9 +13,10 @@ from . import (
     mechanical,
     passive,
     sources,
+    thermal,
     varistor,
     waveforms,
 )
 
 __all__ = ["bldc", "controlled", "diode", "drivetrain", "emf", "mechanical", "passive",
-           "sources", "varistor", "waveforms"]
+           "sources", "thermal", "varistor", "waveforms"]

@@ -142,7 +142,7 @@ def _check(net: Netlist, dom: str, g: nx.MultiGraph, warnings: list[str]) -> Non
                 f"{{{', '.join(sorted(part))}}}: nothing else connects those nodes, so their "
                 f"potentials are undetermined. Add a shunt path (resistor, damper)",
                 c.loc, c.name)
-    if dom != "electrical":
+    if dom in ("rotational", "translational"):  # a thermal node may hold no heat
         for node in g.nodes:
             if node == REF:
                 continue

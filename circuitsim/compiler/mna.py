@@ -180,9 +180,8 @@ def assemble(net: Netlist) -> Dae:
         by_domain: dict[str, sp.Expr] = {}
         for port in spec.cls.ports:
             dom, p = port.domain, port.name
-            by_domain[dom.name] = by_domain.get(dom.name, sp.Integer(0)) + \
-                exports[f"{spec.name}.{p}.{dom.across}"] * \
-                exports[f"{spec.name}.{p}.{dom.through}"]
+            by_domain[dom.name] = by_domain.get(dom.name, sp.Integer(0)) + dom.port_power(
+                exports[f"{spec.name}.{p}.{dom.across}"], exports[f"{spec.name}.{p}.{dom.through}"])
         exports[f"{spec.name}.power"] = sum(by_domain.values(), sp.Integer(0))
         units[f"{spec.name}.power"] = "W"
         if len(by_domain) > 1:
