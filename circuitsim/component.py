@@ -33,12 +33,20 @@ class Domain:
     integral: str | None
     integral_unit: str | None
     references: tuple[str, ...]
+    through_is_power: bool = False  # heat flow is itself a power; T * Q is not one
+
+    def port_power(self, across: Any, through: Any) -> Any:
+        """Power [W] entering a port of this domain."""
+        return through if self.through_is_power else across * through
 
 
 ELECTRICAL = Domain("electrical", "v", "i", "V", "A", None, None, ("gnd", "0"))
 ROTATIONAL = Domain("rotational", "w", "tau", "rad/s", "N*m", "phi", "rad", ("fixed",))
 TRANSLATIONAL = Domain("translational", "v", "f", "m/s", "N", "x", "m", ("fixed",))
-DOMAINS = {d.name: d for d in (ELECTRICAL, ROTATIONAL, TRANSLATIONAL)}
+# Temperatures are absolute [K]; the reference is 0 K (a heat capacity, a fixed temperature
+# or a heat source acts against it, as a capacitor acts against ground).
+THERMAL = Domain("thermal", "T", "Q", "K", "W", None, None, ("absolute_zero",), True)
+DOMAINS = {d.name: d for d in (ELECTRICAL, ROTATIONAL, TRANSLATIONAL, THERMAL)}
 
 
 @dataclass(frozen=True, slots=True)
@@ -61,6 +69,10 @@ def TFlange(name: str) -> Port:
     return Port(name, TRANSLATIONAL)
 
 
+def HeatPort(name: str) -> Port:
+    return Port(name, THERMAL)
+
+
 @dataclass(frozen=True, slots=True)
 class Param:
     """A numeric parameter: unit, meaning and validity. Its value is a run-time number.
@@ -74,11 +86,14 @@ class Param:
     positive: bool = False
     nonnegative: bool = False
     integer: bool = False
+    maximum: float | None = None
 
     def violation(self, value: float) -> str | None:
         """Why ``value`` [SI] is invalid, or None."""
         if not math.isfinite(value):
             return "must be a finite number"
+        if self.maximum is not None and value > self.maximum:
+            return f"must not exceed {self.maximum:g}"
         if self.positive and value <= 0:
             return "must be positive"
         if self.nonnegative and value < 0:
@@ -300,6 +315,16 @@ class Waveform:
     def breakpoints(self, p: Mapping[str, float], t_stop: float) -> list[float]:
         """Times [s] where the waveform has a corner (the integrator restarts there)."""
         return []
+
+    def period(self, p: Mapping[str, float]) -> float:
+        """Period [s] of a periodic waveform (0: not periodic); output sampled coarser than
+        half of it aliases."""
+        return 0.0
+
+    def max_step(self, p: Mapping[str, float]) -> float:
+        """Largest integrator step [s] the waveform allows (0: no bound). A smooth periodic
+        source bounds it so IDA cannot step over what happens within one period."""
+        return 0.0
 
 
 class OnePort(Component):

@@ -4,6 +4,19 @@ Each module is one family; each class states ports, parameters with units, and s
 equations, and nothing else. Nothing here imports the solver.
 """
 
-from . import bldc, emf, mechanical, passive, sources, varistor, waveforms
+from . import (
+    bldc,
+    controlled,
+    diode,
+    drivetrain,
+    emf,
+    mechanical,
+    passive,
+    sources,
+    thermal,
+    varistor,
+    waveforms,
+)
 
-__all__ = ["bldc", "emf", "mechanical", "passive", "sources", "varistor", "waveforms"]
+__all__ = ["bldc", "controlled", "diode", "drivetrain", "emf", "mechanical", "passive",
+           "sources", "thermal", "varistor", "waveforms"]

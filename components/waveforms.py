@@ -44,16 +44,64 @@ class Step(Waveform):
         return [p["t0"], p["t0"] + p["rise"]]
 
 
+#: Steps per period of a smooth periodic source that bound IDA's largest step. A diode fed by a
+#: sine stops conducting for most of each period; with nothing changing in the circuit IDA grows
+#: its step past the period and skips whole conduction windows (v_C(10 s) 6.65 V instead of
+#: 8.263 V in netlists/breadth/diode_charge.yaml). Period/2 still fails there (5.21 V), period/4
+#: already agrees to 1e-5; period/20 leaves a wide margin at a cost of 20 steps per period.
+STEPS_PER_PERIOD = 20
+
+
 @register_waveform("sine")
 class Sine(Waveform):
-    """offset + amplitude * sin(2 pi freq t + phase)."""
+    """SPICE SIN: offset + amplitude * exp(-damping (t - delay)) * sin(2 pi freq (t - delay)
+    + phase) after ``delay``, offset + amplitude * sin(phase) before it. (SPICE writes the
+    phase in degrees: give it as ``30 deg``.)"""
 
-    params: ClassVar[dict[str, Param]] = {"offset": Param("@", "offset", default=0.0), "amplitude": Param("@", "amplitude"),
-              "freq": Param("Hz", "frequency", positive=True),
-              "phase": Param("rad", "phase at t = 0", default=0.0)}
+    params: ClassVar[dict[str, Param]] = {
+        "offset": Param("@", "offset", default=0.0), "amplitude": Param("@", "amplitude"),
+        "freq": Param("Hz", "frequency", positive=True),
+        "phase": Param("rad", "phase at t = delay", default=0.0),
+        "delay": Param("s", "delay before the sine starts", default=0.0, nonnegative=True),
+        "damping": Param("1/s", "exponential damping factor (SPICE THETA)", default=0.0)}
 
     def expr(self, t, p, data=None):
-        return p["offset"] + p["amplitude"] * sp.sin(2 * sp.pi * p["freq"] * t + p["phase"])
+        u = t - p["delay"]
+        wave = sp.exp(-p["damping"] * u) * sp.sin(2 * sp.pi * p["freq"] * u + p["phase"])
+        before = sp.sin(p["phase"])
+        return p["offset"] + p["amplitude"] * sp.Piecewise((before, u < 0), (wave, True))
+
+    def breakpoints(self, p, t_stop):
+        return [p["delay"]] if p["delay"] > 0 else []
+
+    def period(self, p):
+        return 1.0 / p["freq"]
+
+    def max_step(self, p):
+        return 1.0 / (STEPS_PER_PERIOD * p["freq"])
+
+
+@register_waveform("exp")
+class Exp(Waveform):
+    """SPICE EXP: v1 until ``delay1``, then rising towards v2 with time constant ``tau1``;
+    from ``delay2`` on falling back towards v1 with ``tau2``."""
+
+    params: ClassVar[dict[str, Param]] = {
+        "v1": Param("@", "initial value", default=0.0), "v2": Param("@", "pulsed value"),
+        "delay1": Param("s", "rise delay", default=0.0, nonnegative=True),
+        "tau1": Param("s", "rise time constant", positive=True),
+        "delay2": Param("s", "fall delay", positive=True),
+        "tau2": Param("s", "fall time constant", positive=True)}
+
+    def expr(self, t, p, data=None):
+        dv = p["v2"] - p["v1"]
+        rise = dv * (1 - sp.exp(-(t - p["delay1"]) / p["tau1"]))
+        fall = -dv * (1 - sp.exp(-(t - p["delay2"]) / p["tau2"]))
+        return p["v1"] + sp.Piecewise((0, t < p["delay1"]), (rise, t < p["delay2"]),
+                                      (rise + fall, True))
+
+    def breakpoints(self, p, t_stop):
+        return [p["delay1"], p["delay2"]]
 
 
 @register_waveform("pulse")
@@ -84,6 +132,9 @@ class Pulse(Waveform):
                     start + p["rise"] + p["width"] + p["fall"]]
             k += 1
 
+    def period(self, p):
+        return p["period"]
+
 
 @register_waveform("pwm")
 class Pwm(Pulse):
@@ -106,6 +157,9 @@ class Pwm(Pulse):
     def breakpoints(self, p, t_stop):
         return super().breakpoints(self._as_pulse(p), t_stop)
 
+    def period(self, p):
+        return 1.0 / p["freq"]
+
 
 @register_waveform("table")
 class Table(Waveform):
@@ -124,7 +178,9 @@ class Table(Waveform):
 class Pwl(Waveform):
     """Piecewise linear through [t_k, v_k] points, held constant outside them.
 
-    Netlist: ``{pwl: [[0, 0], [1 ms, 12 V]]}``.
+    Netlist: ``{pwl: [[0, 0], [1 ms, 12 V]]}``, or from two columns of a CSV file:
+    ``{pwl: {file: points.csv, column: v, time: time}}`` (every point is a breakpoint; for
+    long measured records use ``table``).
     """
 
     params: ClassVar[dict[str, Param]] = {}

@@ -112,7 +112,7 @@ def _check(net: Netlist, dom: str, g: nx.MultiGraph, warnings: list[str]) -> Non
                 first.loc if first else None, first.name if first else None)
     _source_loops(net, dom, g)
     _source_cutsets(net, dom, g)
-    if dom != "electrical":
+    if dom in ("rotational", "translational"):  # a thermal node may hold no heat
         _inertias(net, dom, g)
 
 

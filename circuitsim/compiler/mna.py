@@ -191,9 +191,9 @@ class _Assembly:
         by_domain: dict[str, sp.Expr] = {}
         for port in spec.cls.ports:
             dom, p = port.domain, port.name
-            by_domain[dom.name] = by_domain.get(dom.name, sp.Integer(0)) + \
-                self.exports[f"{spec.name}.{p}.{dom.across}"] * \
-                self.exports[f"{spec.name}.{p}.{dom.through}"]
+            by_domain[dom.name] = by_domain.get(dom.name, sp.Integer(0)) + dom.port_power(
+                self.exports[f"{spec.name}.{p}.{dom.across}"],
+                self.exports[f"{spec.name}.{p}.{dom.through}"])
         self.exports[f"{spec.name}.power"] = sum(by_domain.values(), sp.Integer(0))
         self.units[f"{spec.name}.power"] = "W"
         if len(by_domain) > 1:
@@ -318,4 +318,33 @@ def _expression(spec: ComponentSpec, key: str, asm: _Assembly) -> sp.Expr:
             (f" (did you mean {', '.join(close)}?)" if close else
              " (use netlist parameters, t, or quantities such as NODE.v, SHAFT.w, "
              "COMP.i)"), spec.loc, spec.name)
-    return ex.to_sympy(node, scope_names)
+    unit = spec.cls.declared()[key].unit
+    return _behavioural(node, scope_names, unit, asm.units, _dims(asm.net), spec, key)
+
+
+def _dims(net: Netlist) -> dict[str, Any]:
+    """Dimension of every netlist parameter (None: given without units)."""
+    return {n: g.dim for n, g in net.parameters.items()}
+
+
+def _behavioural(node, names: Mapping[str, Any], unit: str, units: Mapping[str, str],
+                 pdims: Mapping[str, Any], spec: ComponentSpec, key: str) -> sp.Expr:
+    """A behavioural expression in sympy, its dimension checked where it is known
+    (mechanical quantities, parameters and numbers written with units), errors at its netlist
+    line. Voltages and currents are not checked: a node may carry any signal (SPICE's
+    behavioural convention; a position reference as a voltage, say)."""
+    from circuitsim.units import unit_info
+
+    def dim(n: str):
+        u = units.get(n)
+        return pdims.get(n) if not u else None if u in ("V", "A", "W") else unit_info(u)[1]
+
+    env = {n: dim(n) for n in ex.names(node)}
+    env["t"] = unit_info("s")[1]
+    why = ex.unit_mismatch(node, unit, env)
+    if why:
+        raise NetlistError(f"expression '{key}': {why}", spec.loc, spec.name)
+    try:
+        return ex.to_sympy(node, names)
+    except NetlistError as exc:
+        raise NetlistError(f"expression '{key}': {exc.bare}", spec.loc, spec.name) from None

@@ -34,6 +34,8 @@ from circuitsim.component import (
 from circuitsim.errors import NetlistError, ParameterError, SourceLoc
 from circuitsim.files import atomic_write
 from circuitsim.netlist import expr as ex
+from circuitsim.netlist.pwlfile import pwl_points
+from circuitsim.netlist.subckt import flatten, read_subckts
 from circuitsim.units import Dim, compatible, describe, explain_mismatch, spice_value, unit_info
 
 SCHEMA_PATH = Path(__file__).with_name("schema.json")
@@ -335,6 +337,7 @@ class RawNetlist:
     path: str = ""
     files: list[str] = field(default_factory=list)  # the netlist and its includes
     root: str | None = None  # the folder tree includes and tables must lie in (None: any)
+    subckts: dict[str, Any] = field(default_factory=dict)  # subckt.Subckt by name
 
     def copy(self) -> RawNetlist:
         import copy
@@ -456,6 +459,7 @@ def _gather(path: Path, raw: _Raw, stack: tuple[Path, ...], loc: SourceLoc | Non
     for i, inc in enumerate(includes):
         _gather(path.parent / inc, raw, (*stack, path), _loc(sp, includes, index=i))
     raw.title = str(doc.get("title", raw.title or path.stem))
+    raw.subckts.update(read_subckts(doc, sp))
     params = doc.get("parameters") or {}
     for k in params:
         raw.params[str(k)] = (params[k], _loc(sp, params, key=k))  # later files override
@@ -742,6 +746,7 @@ class _Builder:
         body = raw[kind]
         prefix = f"{comp}.{key}."
         if kind == "pwl":
+            body = pwl_points(body, path, loc, comp)  # from a CSV file: the inline form
             return kind, self.pwl(body, loc, comp, key, d, values, prefix)
         if kind == "table":
             if not isinstance(body, Mapping) or "file" not in body or "column" not in body:
@@ -825,6 +830,7 @@ def build(raw: RawNetlist) -> Netlist:
     """Type a raw netlist (as read, or as patched): the second half of ``load``."""
     import circuitsim_components  # noqa: F401 - fills the registries
 
+    raw = flatten(raw)  # subcircuit instances become scoped components
     path = Path(raw.path)
     params = _order_params(raw)
     nodes: dict[str, tuple[str, SourceLoc]] = {}

@@ -13,6 +13,7 @@ member diverges) is re-run member by member, so each failure is reported for its
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Mapping, Sequence
 
 import numpy as np
@@ -30,6 +31,7 @@ from circuitsim.solve.integrate import (
     simulate,
 )
 from circuitsim.solve.result import SimResult, Status
+from circuitsim.solve.sources import bound_step
 
 
 def simulate_batch(model, params_list: Sequence[Mapping[str, float] | None],
@@ -46,6 +48,9 @@ def simulate_batch(model, params_list: Sequence[Mapping[str, float] | None],
         return [simulate(model, run.stop, q, t_eval=run.t_eval, rtol=run.rtol, atol=run.atol,
                          max_step=run.max_step, init=run.init) for q in sets]
     values = [model.param_values(q) for q in sets]
+    run = dataclasses.replace(run, max_step=min(
+        (bound_step(model, v, run.stop, run.t_eval, run.max_step) for v in values),
+        key=lambda h: h if h > 0 else float("inf")))
     ps = [tuple(v[name] for name in model.meta["params"]) for v in values]
     starts = [consistent_start(model, run, q, p) for q, p in zip(sets, ps, strict=True)]
     if any(isinstance(s, str) for s in starts):  # report each member as it would alone

@@ -8,6 +8,7 @@ decimated, so memory stays bounded.
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
@@ -17,6 +18,7 @@ import numpy as np
 from circuitsim.errors import SolverError
 from circuitsim.solve.init import check_initial, consistent_initial, initial_state
 from circuitsim.solve.result import SimResult, Status
+from circuitsim.solve.sources import bound_step
 
 
 def _break_times(model, values: Mapping[str, float], stop: float) -> list[float]:
@@ -97,6 +99,9 @@ def simulate(model, stop: float | None = None, params: Mapping[str, float] | Non
     """
     run = settings(model, stop, step, t_eval, rtol, atol, max_step, init)
     values = model.param_values(params)
+    # the sources' own step bound (a periodic source's period; a fast one is refused)
+    run = dataclasses.replace(run, max_step=bound_step(model, values, run.stop, run.t_eval,
+                                                       run.max_step))
     p = tuple(values[n] for n in model.meta["params"])
     n = len(model.state_names)
     if n == 0:  # every unknown was eliminated: the outputs are explicit functions of t
