@@ -6,7 +6,8 @@ A 0.4 s record of the Kim & Kim base motor at 50 kHz with two probes (supply cur
 speed), made from the base netlist plus a hidden Coulomb friction torque of 2 mN m (about 5 %
 of the load), with white noise (5 mA, 0.05 rad/s) and ADC steps (1 mA, 0.01 rad/s). The
 base netlist declares nothing; the diagnosis must find the friction. Prints the time of each
-stage (declared fit, screening, refits) and the total; the target is 60 s on 2 cores.
+stage (declared fit, screening, refits) and the total; the target is 20 s on 2 cores (issue
+#13), printed beside the time of one simulation of the record.
 """
 
 from __future__ import annotations
@@ -43,7 +44,10 @@ def main() -> int:
     cols = {"i_total": np.round((res["i_total"] + rng.normal(0, 5e-3, t.size)) / 1e-3) * 1e-3,
             "speed": np.round((res["speed"] + rng.normal(0, 0.05, t.size)) / 0.01) * 0.01}
     print(f"record: {t.size} samples x 2 probes, made in {time.perf_counter() - t0:.1f} s")
-    cs.compile(net)  # the declared topology is compiled once, as a user's second run is
+    declared = cs.compile(net)  # compiled once, as a user's second run is
+    t0 = time.perf_counter()
+    declared.simulate(stop=0.4, t_eval=t, rtol=1e-8)
+    one_run = time.perf_counter() - t0
     t0 = time.perf_counter()
     d = diagnose(net, Record(t, cols, "bench"), probes=["i_total", "speed"],
                  progress=lambda m: print(m) if "SSE" in m or "accept" in m else None)
@@ -54,7 +58,9 @@ def main() -> int:
     found = [a for a in d.effects if a.effect in ("coulomb-friction", "force-offset")]
     value = abs(next(iter(found[0].parameters.values()))) if found else float("nan")
     print(f"found {'yes' if found else 'NO'}: {value:.4g} N m (truth 0.002)")
-    print(f"total {total:.1f} s -> {'MET' if total <= 60 else 'MISSED'} (target 60 s)")
+    print(f"one simulation of the record: {one_run:.2f} s; the diagnosis costs "
+          f"{total / one_run:.0f} of them")
+    print(f"total {total:.1f} s -> {'MET' if total <= 20 else 'MISSED'} (target 20 s)")
     return 0
 
 

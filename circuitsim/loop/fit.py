@@ -669,14 +669,7 @@ def fit_features(model, features: FeatureSet, free: Sequence[str], *,
     def overrides(z: np.ndarray) -> dict[str, float]:
         return {**params, **dict(zip(space.names, space.theta(z).tolist(), strict=True))}
 
-    def fun(z: np.ndarray) -> np.ndarray:
-        try:
-            pred = predict_features(model, features, overrides(z), harmonic)
-        except (SolverError, ParameterError, np.linalg.LinAlgError):
-            failures[0] += 1
-            return np.full(vals.size, FAILED_PENALTY)
-        return (pred - vals) / w
-
+    fun = _feature_residual(model, features, overrides, harmonic, vals, w, failures)
     z0 = np.zeros(len(free))
     r0 = fun(z0)
     if failures[0]:
@@ -697,6 +690,22 @@ def fit_features(model, features: FeatureSet, free: Sequence[str], *,
     unc = _unevaluated(_uncertainty(J, r, space, z, None, absolute), bad, space)
     return _features_result(model, features, space, z, unc, overrides(z), harmonic, vals, w,
                             ok, msg, nfev, stages)
+
+
+def _feature_residual(model, features: FeatureSet, overrides, harmonic: str,
+                      vals: np.ndarray, w: np.ndarray, failures: list[int]):
+    """The features' residual in sigmas at a parameter vector z (a failed evaluation counts
+    in ``failures`` and returns the penalty)."""
+
+    def fun(z: np.ndarray) -> np.ndarray:
+        try:
+            pred = predict_features(model, features, overrides(z), harmonic)
+        except (SolverError, ParameterError, np.linalg.LinAlgError):
+            failures[0] += 1
+            return np.full(vals.size, FAILED_PENALTY)
+        return (pred - vals) / w
+
+    return fun
 
 
 def _features_result(model, features: FeatureSet, space: _Space, z: np.ndarray, unc, fitted,

@@ -33,9 +33,7 @@ def diagnose_features(netlist, features, free: Sequence[str] = (), *,
     say = progress or (lambda msg: None)
     start = time.perf_counter()
     net = netlist if isinstance(netlist, Netlist) else load(netlist)
-    if any(f.sigma is None for f in features.features):
-        raise DiagnosisError(f"{features.path}: every feature needs a sigma for the "
-                             f"diagnosis (its chi-square decides)")
+    _need_sigmas(features)
     n = len(features.features)
     run = _runner(features)
     model = compile_raw(net.raw)
@@ -152,3 +150,9 @@ def _runner(features):
                                 bounds={k: v for k, v in bounds_.items() if k in free_} or None)
 
     return run
+
+
+def _need_sigmas(features) -> None:
+    if any(f.sigma is None for f in features.features):
+        raise DiagnosisError(f"{features.path}: every feature needs a sigma for the "
+                             f"diagnosis (its chi-square decides)")
