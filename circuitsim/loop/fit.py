@@ -293,7 +293,8 @@ def _calibrate(space: _Space, fun: Callable[[np.ndarray], np.ndarray], z0: np.nd
 # ------------------------------------------------------------------- least squares core
 
 def _least_squares(fun: Callable[[np.ndarray], np.ndarray], space: _Space, z0: np.ndarray,
-                   diff_step: float | np.ndarray, max_nfev: int):
+                   diff_step: float | np.ndarray, max_nfev: int,
+                   many: Callable[[list[np.ndarray]], list[np.ndarray]] | None = None):
     """scipy's trust-region least squares in z, with forward differences of *absolute* step
     ``diff_step`` in z (a relative change of a log-scaled parameter).
 
@@ -312,14 +313,20 @@ def _least_squares(fun: Callable[[np.ndarray], np.ndarray], space: _Space, z0: n
         return r
 
     def jac(z: np.ndarray) -> np.ndarray:
-        r0 = last["r"] if "z" in last and np.array_equal(last["z"], z) else fun(z)
-        cols = []
-        for k in range(z.size):
-            h = _inside(space, z, k, float(steps[k])) or float(steps[k])
+        hs = [_inside(space, z, k, float(steps[k])) or float(steps[k]) for k in range(z.size)]
+        shifted = []
+        for k, h in enumerate(hs):
             zz = z.copy()
             zz[k] += h
-            cols.append((fun(zz) - r0) / h)
-        return np.column_stack(cols)
+            shifted.append(zz)
+        if many is not None:
+            # the point and its neighbours in one batched run: one step sequence for all,
+            # so the differences carry no integration noise of their own
+            r0, *rs = many([z, *shifted])
+        else:
+            r0 = last["r"] if "z" in last and np.array_equal(last["z"], z) else fun(z)
+            rs = [fun(zz) for zz in shifted]
+        return np.column_stack([(r - r0) / h for r, h in zip(rs, hs, strict=True)])
 
     # a start on a bound (a friction force starting at 0 >= 0) is feasible but freezes the
     # trust region: its affine scaling shrinks every step to the distance to the bound
@@ -849,7 +856,8 @@ def fit_record(model, record: Record, free: Sequence[str], *,
     nfev = 0
     ok, msg = True, "nothing free: the residuals of the start values"
     for name, fun in prob.plan(staged) if free else []:
-        sol = _least_squares(fun, prob.space, z, step, max_nfev)
+        sol = _least_squares(fun, prob.space, z, step, max_nfev,
+                             prob.many if fun == prob.full else None)
         z = sol.x
         nfev += int(sol.nfev)
         ok, msg = bool(sol.status > 0), str(sol.message)
@@ -894,6 +902,26 @@ class _RecordProblem:
     def waveforms(self, z: np.ndarray) -> list[np.ndarray] | None:
         res = self.simulate(z)
         return None if res is None else [res[p] for p in self.names]
+
+    def many(self, zs: list[np.ndarray]) -> list[np.ndarray]:
+        """``full`` at several points from one batched integration."""
+        from circuitsim.solve.batch import simulate_batch
+
+        try:
+            runs = simulate_batch(self.model, [self.overrides(z) for z in zs],
+                                  stop=float(self.t[-1]), t_eval=self.t, rtol=self.rtol,
+                                  atol=self.atol)
+        except ParameterError:
+            return [self.full(z) for z in zs]
+        out = []
+        for res in runs:
+            if not res.success or res.t.size != self.t.size:
+                self.failures += 1
+                out.append(np.full(self.t.size * len(self.names), FAILED_PENALTY))
+                continue
+            out.append(np.concatenate([(res[p] - x) / s for p, x, s in
+                                       zip(self.names, self.data, self.spread, strict=True)]))
+        return out
 
     def full(self, z: np.ndarray) -> np.ndarray:
         ys = self.waveforms(z)

@@ -98,6 +98,22 @@ def simulate(setup: Setup, model, params: Mapping[str, float], rtol: float | Non
     return res
 
 
+def simulate_many(setup: Setup, model, params_list: Sequence[Mapping[str, float]],
+                  rtol: float | None = None) -> list[Any]:
+    """Several parameter sets of one model in one batched integration; None for a member
+    that fails."""
+    from circuitsim.solve.batch import simulate_batch
+
+    rec = setup.record
+    try:
+        runs = simulate_batch(model, [dict(q) for q in params_list], stop=float(rec.t[-1]),
+                              t_eval=rec.t, rtol=rtol or setup.rtol,
+                              atol=model.netlist.analysis.atol)
+    except (CircuitsimError, ArithmeticError, ValueError):
+        return [simulate(setup, model, q, rtol) for q in params_list]
+    return [r if r.success and r.t.size == rec.t.size else None for r in runs]
+
+
 def weighted(setup: Setup, series: Mapping[str, Any]) -> np.ndarray:
     """Probe series divided by each probe's noise, concatenated."""
     return np.concatenate([np.asarray(series[p], float) / setup.weights[p]

@@ -26,6 +26,7 @@ from circuitsim.loop.diagnose.context import (
     Setup,
     compile_raw,
     simulate,
+    simulate_many,
     weighted,
 )
 
@@ -101,19 +102,31 @@ def screen(setup: Setup, state: ModelState, proposal: Proposal, project: Project
     base = {**state.params, **{k: v[0] for k, v in cand.free.items()}}
     if cand.effect in SENSOR_LAWS:
         return _sensor(setup, state, proposal, model, base, project)
-    y0 = simulate(setup, model, base)
+    if cand.grid:
+        y0 = simulate(setup, model, base)
+        if y0 is None:
+            return None
+        e0 = project(setup.record) - project(y0)
+        norm0 = float(e0 @ e0)
+        return _grid(setup, proposal, model, base, y0, e0, project, norm0) \
+            if norm0 > 0.0 else None
+    # the base and one step of each parameter in one batched run (one step sequence for all:
+    # the differences carry no integration noise of their own)
+    steps = {n: cand.steps.get(n, 1e-3) for n in cand.free}
+    runs = simulate_many(setup, model, [base, *({**base, n: base[n] + h}
+                                                 for n, h in steps.items())])
+    y0 = runs[0]
     if y0 is None:
         return None
     e0 = project(setup.record) - project(y0)
     norm0 = float(e0 @ e0)
     if norm0 <= 0.0:
         return None
-    if cand.grid:
-        return _grid(setup, proposal, model, base, y0, e0, project, norm0)
     cols = []
-    for name in cand.free:
-        col = _sensitivity(setup, model, base, name, cand.steps.get(name, 1e-3), y0,
-                           project, noise)
+    for (name, h), y in zip(steps.items(), runs[1:], strict=True):
+        col = _first_column(y, y0, h, project, noise)
+        if col is None:  # out of the linear range or below the noise: adapt the step alone
+            col = _sensitivity(setup, model, base, name, h, y0, project, noise)
         if col is None:
             return None
         cols.append(col)
@@ -128,6 +141,17 @@ def screen(setup: Setup, state: ModelState, proposal: Proposal, project: Project
 def _inside(spec: tuple[float, float, float], value: float) -> float:
     _, lo, hi = spec
     return min(max(value, lo), hi)
+
+
+def _first_column(y, y0, h: float, project: Projector, noise: float) -> np.ndarray | None:
+    """The batched first difference, when its size is in the linear range above the noise."""
+    if y is None:
+        return None
+    col = (project(y) - project(y0)) / h
+    size = float(np.linalg.norm(col * h))
+    if max(1e-7 * math.sqrt(col.size), 10 * noise) <= size <= 0.3 * math.sqrt(col.size):
+        return col
+    return None
 
 
 def _sensitivity(setup: Setup, model, base: Mapping[str, float], name: str, h: float, y0,
