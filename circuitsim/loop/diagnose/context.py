@@ -131,7 +131,7 @@ def refit(setup: Setup, model, free: Sequence[str], params: Mapping[str, float],
         b = {k: v for k, v in bounds.items() if k in free}
         return fit_record(model, setup.record, list(free), params=dict(params),
                           bounds=b or None, probes=list(setup.probes), rtol=setup.rtol,
-                          staged=staged, max_nfev=100 if staged else nfev,
+                          staged=staged, max_nfev=nfev,
                           weights=dict(setup.weights))
 
 

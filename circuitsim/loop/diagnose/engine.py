@@ -95,7 +95,7 @@ def fit_declared(netlist, record, free, probes, params, rtol, max_effects, progr
                              f"({', '.join(model.probe_names)})")
     first = Setup(record, names, {p: _spread(record[p]) for p in names}, tuple(free), rtol,
                   max_effects, progress)
-    fit0 = refit(first, model, list(free), dict(params or {}), {}, staged=True)
+    fit0 = refit(first, model, list(free), dict(params or {}), {}, staged=True, nfev=100)
     weights = {p: _noise_weight(fit0.residuals[p], record[p]) for p in names}
     setup = Setup(record, names, weights, tuple(free), rtol, max_effects, progress)
     if free:  # refit with the noise weights (a probe counts by its signal-to-noise ratio)
@@ -154,11 +154,12 @@ def _screen_round(setup: Setup, state: ModelState, log: dict[str, Any]) -> list[
         s = screen(setup, state, prop, fn, noise[id(fn)])
         if s is not None and s.share > 0:
             out.append(s)
-    # ranked by the BIC change the gain would give as a white-noise likelihood ratio in the
-    # space it was measured in (shares of different spaces do not compare); one that cannot
-    # pay the margin will not pass after a refit either
+    # one whose gain cannot pay the BIC margin as a white-noise likelihood ratio in the space
+    # it was measured in will not pass after a refit either; the rest are ranked by the share
+    # of their own space's residual they explain (a speed effect seen in slow features and a
+    # ripple seen in the waveform compare as shares, not as sums of squares)
     out = [s for s in out if _score(s) > BIC_MARGIN]
-    out.sort(key=lambda s: -_score(s))
+    out.sort(key=lambda s: -s.share)
     return out
 
 
@@ -298,7 +299,8 @@ def _swap(setup: Setup, state: ModelState, log: dict[str, Any]) -> ModelState:
                           for t in log.get("rounds", {}).get(choice.candidate.key, []))]
                for choice in state.chosen]
     combos = list(itertools.product(*options))[1:]  # the first is the model as it stands
-    if not combos or len(combos) >= MAX_COMBINATIONS:
+    # with one effect, its round already compared the alternatives in the same company
+    if len(state.chosen) < 2 or not combos or len(combos) >= MAX_COMBINATIONS:
         return state
     best, best_w = state, None
     gains: dict[str, float] = {}
