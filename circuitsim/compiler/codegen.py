@@ -1,13 +1,17 @@
 """Generate and cache the numeric code of an index-1 DAE.
 
-Pipeline stage 5. One Python module per topology, written with sympy's code printers after
-common-subexpression elimination: one residual call for the whole network, its analytic
-Jacobian dF/dy + cj dF/dy', the parts dF/dy, dF/dy', dF/dt (for consistent initial values and
-linearisation), and a vectorised ``observe`` giving every probe and every eliminated variable.
-Parameters are a run-time tuple, so a parameter change never reaches sympy.
+Pipeline stage 5. One Python module per topology: one residual call for the whole network;
+its Jacobian dF/dy + cj dF/dy' at the structural nonzeros only (a flat array in
+compressed-column order, with the pattern in the metadata); the flat parts dF/dy, dF/dy',
+dF/dt (consistent initial values, linearisation); the residual split into a linear part
+(coefficients from the parameters alone, evaluated as a sparse matrix product for large
+models) and the remaining terms; and every probe and eliminated variable as a vectorised
+expression compiled only when asked for. Sums and products are printed directly; common
+subexpressions are searched only among the non-polynomial expressions. Parameters are a
+run-time tuple, so a parameter change never reaches sympy.
 
-The module is stored by ``cache`` and imported from there; a second run of the
-same topology imports it without touching sympy.
+The module is stored by ``cache`` and loaded from there after a content check; a second run
+of the same topology does no symbolic work.
 """
 
 from __future__ import annotations

@@ -4,9 +4,12 @@ Pipeline stage 4. Turns the MNA DAE (index up to 2 or more: inductor cut-sets, c
 voltage-source loops, inertias tied by constraints) into an index-1 DAE for IDA, generally:
 
 1. Alias / linear elimination: an equation linear in an unknown with a constant numeric
-   coefficient is solved for it and substituted. For a differentiated unknown (x = a y + b(t)
-   with y a state) its derivative is substituted too, which is exactly how series inductors
-   or a capacitor across a source lose their extra index.
+   coefficient is solved for it and substituted, if that adds no fill-in (the number of
+   equation-unknown incidences must not grow), smallest equations first, with an index from
+   each unknown to its equations so a step touches only its neighbourhood: a ladder stays a
+   ladder. For a differentiated unknown (x = a y + b(t) with y a state) its derivative is
+   substituted too, which is exactly how series inductors or a capacitor across a source
+   lose their extra index.
 2. Pantelides' algorithm on the equation / highest-derivative bipartite graph finds the
    equations that must be differentiated.
 3. Dummy derivatives (Mattsson & Soederlind 1993) replace enough derivatives by algebraic
