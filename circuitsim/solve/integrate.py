@@ -50,8 +50,6 @@ def simulate(model, stop: float | None = None, params: Mapping[str, float] | Non
     progress : called with the simulated time [s] after each integrator call (at every
         waveform corner and every ``chunk`` output points); for a progress bar.
     """
-    import sksundae as sun
-
     an = model.netlist.analysis
     stop = float(stop if stop is not None else an.stop)
     if not stop > 0:
@@ -59,7 +57,6 @@ def simulate(model, stop: float | None = None, params: Mapping[str, float] | Non
     rtol = an.rtol if rtol is None else rtol
     atol = an.atol if atol is None else atol
     max_step = an.max_step if max_step is None else max_step
-    init = init or an.init
     values = model.param_values(params)
     p = tuple(values[n] for n in model.meta["params"])
     if t_eval is None:
@@ -67,12 +64,38 @@ def simulate(model, stop: float | None = None, params: Mapping[str, float] | Non
         n_out = round(stop / h)
         t_eval = np.linspace(0.0, stop, n_out + 1)
     t_eval = np.asarray(t_eval, float)
-    residual, jac, _, _, _ = model.fns
-    nd = model.meta["n_diff"]
     n = len(model.state_names)
     if n == 0:  # every unknown was eliminated: the outputs are explicit functions of t
         empty = np.zeros((0, t_eval.size))
         return _finite(SimResult(t_eval, empty, empty, (), Status.OK, "", 0, 0, model, p))
+    start = _start(model, params, p, init or an.init, t_eval)
+    if isinstance(start, SimResult):
+        return start
+    # Corners closer than IDA can resolve (|tout - t0| ~ 1e-13 t) are merged into one.
+    eps = 1e-11 * stop
+    edges = [0.0]
+    for b in [*_break_times(model, values, stop), stop]:
+        if b - edges[-1] > eps:
+            edges.append(b)
+    edges[-1] = stop
+    rec = _Recorder(keep_after, decimate)
+    run = _Run(model, p, rtol, atol, max_step, chunk, eps, progress)
+    status, detail = run.integrate(edges, t_eval, *start, rec)
+    t_all, y_all, yp_all = rec.arrays(n)
+    return _finite(SimResult(t_all, y_all, yp_all, model.state_names, status, detail,
+                             run.nfev, run.njev, model, p))
+
+
+def _start(model, params: Mapping[str, float] | None, p: tuple, init: str,
+           t_eval: np.ndarray) -> tuple[np.ndarray, np.ndarray] | SimResult:
+    """Stage 1: consistent initial values (y, y') at t = 0, from rest or the operating point;
+    a failed start is returned as its SimResult."""
+    n = len(model.state_names)
+
+    def failed(message: str) -> SimResult:
+        return SimResult(t_eval[:0], np.zeros((n, 0)), np.zeros((n, 0)), model.state_names,
+                         Status.INIT_FAILED, message, 0, 0, model, p)
+
     overridden = frozenset(params or {})
     y0, _ = initial_state(model, 0.0, p, overridden)
     if init == "op":
@@ -81,15 +104,13 @@ def simulate(model, stop: float | None = None, params: Mapping[str, float] | Non
         try:
             y0 = operating_point(model, params).y
         except SolverError as exc:
-            return SimResult(t_eval[:0], np.zeros((n, 0)), np.zeros((n, 0)),
-                             model.state_names, Status.INIT_FAILED, exc.bare, 0, 0, model, p)
+            return failed(exc.bare)
     elif init != "rest":
         raise SolverError(f"init must be 'rest' or 'op', not {init!r}")
     try:
         y0, yp0 = consistent_initial(model, 0.0, y0, p)
     except SolverError as exc:
-        return SimResult(t_eval[:0], np.zeros((n, 0)), np.zeros((n, 0)), model.state_names,
-                         Status.INIT_FAILED, exc.bare, 0, 0, model, p)
+        return failed(exc.bare)
     if init == "rest":
         ignored = check_initial(model, 0.0, y0, yp0, p, overridden)
         if ignored:
@@ -98,59 +119,98 @@ def simulate(model, stop: float | None = None, params: Mapping[str, float] | Non
             from circuitsim.errors import CircuitWarning
 
             warnings.warn("initial values that conflict with the circuit or with each other "
-                          "were not met: " + "; ".join(ignored), CircuitWarning, stacklevel=3)
-    # Corners closer than IDA can resolve (|tout - t0| ~ 1e-13 t) are merged into one.
-    eps = 1e-11 * stop
-    edges = [0.0]
-    for b in [*_break_times(model, values, stop), stop]:
-        if b - edges[-1] > eps:
-            edges.append(b)
-    edges[-1] = stop
-    ts, ys, yps = [], [], []
-    nfev = njev = 0
-    y, yp, t_now = y0, yp0, 0.0
-    opts = {"rtol": rtol, "atol": atol, "userdata": p, "jacfn": jac, "max_step": max_step,
-            "max_num_steps": 200_000, "algebraic_idx": list(range(nd, n)) or None}
-    status, detail = Status.OK, ""
-    keep_from = keep_after if keep_after is not None else -np.inf
-    counter = 0
+                          "were not met: " + "; ".join(ignored), CircuitWarning, stacklevel=4)
+    return y0, yp0
 
-    def record(times: np.ndarray, yy: np.ndarray, yyp: np.ndarray) -> None:
-        nonlocal counter
-        idx = counter + np.arange(times.size)
-        keep = (times >= keep_from) | (idx % decimate == 0)
-        counter += times.size
-        ts.append(times[keep])
-        ys.append(yy[keep])
-        yps.append(yyp[keep])
 
-    first = t_eval[t_eval <= eps]
-    if first.size:
-        record(first[:1], y0[None, :], yp0[None, :])
-    for a, b in itertools.pairwise(edges):
-        # each requested time belongs to one segment; one within eps of the corner b is
-        # reported as the state at b
-        mine = t_eval[(t_eval > a + eps) & (t_eval <= b + eps)]
-        inner = mine[mine < b - eps]
-        targets = np.append(inner, b)
-        wanted = np.append(np.ones(inner.size, bool), mine.size > inner.size)
-        labels = np.append(inner, mine[-1] if mine.size > inner.size else b)
-        for lo in range(0, targets.size, chunk):
-            part = targets[lo:lo + chunk]
-            solver = sun.ida.IDA(residual, **opts)
+class _Recorder:
+    """Collects output points: all of them after ``keep_after`` [s], every ``decimate``-th
+    before it (memory stays bounded for long runs whose end is analysed)."""
+
+    def __init__(self, keep_after: float | None, decimate: int):
+        self.keep_from = keep_after if keep_after is not None else -np.inf
+        self.decimate = decimate
+        self.counter = 0
+        self.ts: list[np.ndarray] = []
+        self.ys: list[np.ndarray] = []
+        self.yps: list[np.ndarray] = []
+
+    def __call__(self, times: np.ndarray, yy: np.ndarray, yyp: np.ndarray) -> None:
+        idx = self.counter + np.arange(times.size)
+        keep = (times >= self.keep_from) | (idx % self.decimate == 0)
+        self.counter += times.size
+        self.ts.append(times[keep])
+        self.ys.append(yy[keep])
+        self.yps.append(yyp[keep])
+
+    def arrays(self, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        t_all = np.concatenate(self.ts) if self.ts else np.zeros(0)
+        y_all = np.concatenate(self.ys).T if self.ys else np.zeros((n, 0))
+        yp_all = np.concatenate(self.yps).T if self.yps else np.zeros((n, 0))
+        return t_all, y_all, yp_all
+
+
+class _Run:
+    """Stage 2: IDA from corner to corner, in chunks of output points."""
+
+    def __init__(self, model, p: tuple, rtol: float, atol: float, max_step: float,
+                 chunk: int, eps: float, progress: Callable[[float], None] | None):
+        residual, jac, _, _, _ = model.fns
+        nd, n = model.meta["n_diff"], len(model.state_names)
+        self.model, self.rtol, self.atol, self.chunk, self.eps = model, rtol, atol, chunk, eps
+        self.p, self.residual, self.progress = p, residual, progress
+        self.opts = {"rtol": rtol, "atol": atol, "userdata": p, "jacfn": jac,
+                     "max_step": max_step, "max_num_steps": 200_000,
+                     "algebraic_idx": list(range(nd, n)) or None}
+        self.nfev = self.njev = 0
+
+    def integrate(self, edges: list[float], t_eval: np.ndarray, y0: np.ndarray,
+                  yp0: np.ndarray, record: _Recorder) -> tuple[Status, str]:
+        eps, stop = self.eps, edges[-1]
+        first = t_eval[t_eval <= eps]
+        if first.size:
+            record(first[:1], y0[None, :], yp0[None, :])
+        state = (y0, yp0, 0.0)
+        for a, b in itertools.pairwise(edges):
+            # each requested time belongs to one segment; one within eps of the corner b is
+            # reported as the state at b
+            mine = t_eval[(t_eval > a + eps) & (t_eval <= b + eps)]
+            inner = mine[mine < b - eps]
+            targets = np.append(inner, b)
+            wanted = np.append(np.ones(inner.size, bool), mine.size > inner.size)
+            labels = np.append(inner, mine[-1] if mine.size > inner.size else b)
+            status, detail, state = self.segment(targets, wanted, labels, state, record)
+            if status is not Status.OK:
+                return status, detail
+            if b < stop:  # a waveform corner: restart with consistent derivatives
+                y, yp, t_now = state
+                try:
+                    y, yp = consistent_initial(self.model, b, y, self.p, yp_guess=yp)
+                except SolverError as exc:
+                    return Status.SOLVER_FAILED, exc.bare
+                state = (y, yp, t_now)
+        return Status.OK, ""
+
+    def segment(self, targets: np.ndarray, wanted: np.ndarray, labels: np.ndarray,
+                state: tuple, record: _Recorder) -> tuple[Status, str, tuple]:
+        import sksundae as sun
+
+        y, yp, t_now = state
+        for lo in range(0, targets.size, self.chunk):
+            part = targets[lo:lo + self.chunk]
+            solver = sun.ida.IDA(self.residual, **self.opts)
             try:
                 sol = solver.solve(np.concatenate([[t_now], part]), y, yp)
             except Exception as exc:  # noqa: BLE001 - the wrapper raises assorted types
-                status = Status.SOLVER_FAILED
-                detail = (f"at t = {t_now:.6g} s the integrator stopped ({exc!r}); try "
-                          f"smaller tolerances or max_step")
-                break
-            nfev += int(sol.nfev or 0)
-            njev += int(sol.njev or 0)
+                why = (f"at t = {t_now:.6g} s the integrator stopped ({exc!r}); try smaller "
+                       f"tolerances or max_step")
+                return Status.SOLVER_FAILED, why, (y, yp, t_now)
+            self.nfev += int(sol.nfev or 0)
+            self.njev += int(sol.njev or 0)
             got_t, got_y, got_yp = np.asarray(sol.t), np.asarray(sol.y), np.asarray(sol.yp)
             if part.size == 1 and got_t.size > 1:
                 # a two-point span returns the solver's own steps: keep the end only
-                ok = bool(np.isclose(got_t[-1], part[0], rtol=0, atol=eps))
+                ok = bool(np.isclose(got_t[-1], part[0], rtol=0, atol=self.eps))
                 got_t, got_y, got_yp = (np.concatenate([a[:1], a[-1:]]) if ok else a[:1]
                                         for a in (got_t, got_y, got_yp))
             done = max(got_t.size - 1, 0)  # row 0 is the start state
@@ -159,25 +219,12 @@ def simulate(model, stop: float | None = None, params: Mapping[str, float] | Non
                 record(labels[lo:lo + done][w], got_y[1:][w], got_yp[1:][w])
             if not sol.success or done < part.size:
                 t_fail = float(got_t[-1]) if got_t.size else t_now
-                status = Status.SOLVER_FAILED
-                detail = _failure(model, sol, t_fail, rtol, atol)
-                break
+                return (Status.SOLVER_FAILED, _failure(self.model, sol, t_fail, self.rtol,
+                                                       self.atol), (y, yp, t_now))
             y, yp, t_now = got_y[-1], got_yp[-1], float(got_t[-1])
-            if progress is not None:
-                progress(t_now)
-        if status is not Status.OK:
-            break
-        if b < stop:  # a waveform corner: restart with consistent derivatives
-            try:
-                y, yp = consistent_initial(model, b, y, p, yp_guess=yp)
-            except SolverError as exc:
-                status, detail = Status.SOLVER_FAILED, exc.bare
-                break
-    t_all = np.concatenate(ts) if ts else np.zeros(0)
-    y_all = np.concatenate(ys).T if ys else np.zeros((n, 0))
-    yp_all = np.concatenate(yps).T if yps else np.zeros((n, 0))
-    return _finite(SimResult(t_all, y_all, yp_all, model.state_names, status, detail, nfev,
-                             njev, model, p))
+            if self.progress is not None:
+                self.progress(t_now)
+        return Status.OK, "", (y, yp, t_now)
 
 
 def _finite(res: SimResult) -> SimResult:
