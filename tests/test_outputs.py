@@ -238,3 +238,23 @@ analysis: {stop: 500, step: 1 ms}
         assert time.monotonic() - start < 10, library
         assert proc.returncode == 130, (library, err)
         assert "Traceback" not in err, (library, err)
+
+
+def test_identify_refuses_to_overwrite_its_record(tmp_path, capsys):
+    data = tmp_path / "emf.csv"
+    data.write_text("theta,omega,e1\n0,1,0\n")
+    assert main(["identify", "emf", str(data), "--pp", "6", "--plot", str(data)]) == 2
+    assert "is the input" in capsys.readouterr().err
+    assert data.read_text() == "theta,omega,e1\n0,1,0\n"
+
+
+def test_diagnose_probe_naming_no_column_exits_2(rc_copy, tmp_path, capsys):
+    """`--probe` naming a column the record lacks: a message naming the columns, not a
+    KeyError."""
+    rec = tmp_path / "rec.csv"
+    assert main(["run", str(rc_copy), "--out", str(rec), "--plot", str(tmp_path / "r.png"),
+                 "--probe", "v_out"]) == 0
+    capsys.readouterr()
+    assert main(["diagnose", str(rc_copy), str(rec), "--probe", "i"]) == 2
+    err = capsys.readouterr().err
+    assert "no such column" in err and "v_out" in err and "Traceback" not in err
