@@ -258,3 +258,50 @@ def test_diagnose_probe_naming_no_column_exits_2(rc_copy, tmp_path, capsys):
     assert main(["diagnose", str(rc_copy), str(rec), "--probe", "i"]) == 2
     err = capsys.readouterr().err
     assert "no such column" in err and "v_out" in err and "Traceback" not in err
+
+
+LONG_RUN = """
+title: long sine
+components:
+  - {name: V1, type: V, p: a, n: gnd, V: {sine: {amplitude: 1, freq: 1 kHz}}}
+  - {name: R1, type: R, p: a, n: b, R: 1k}
+  - {name: C1, type: C, p: b, n: gnd, C: 1u}
+probes: {v: b.v}
+analysis: {stop: 500, step: 1 ms}
+"""
+
+
+def test_sigterm_during_a_run_exits_143_and_leaves_the_old_output(tmp_path):
+    net = tmp_path / "sine.yaml"
+    net.write_text(LONG_RUN)
+    out = tmp_path / "run.csv"
+    out.write_text("old results\n")
+    proc = subprocess.Popen([sys.executable, "-m", "circuitsim.cli", "run", str(net), "--out",
+                             str(out), "--plot", str(tmp_path / "p.png")],
+                            stderr=subprocess.PIPE, stdout=subprocess.DEVNULL, text=True)
+    deadline = time.monotonic() + 60
+    while not _loaded(proc.pid, "libsundials_ida") and time.monotonic() < deadline:
+        time.sleep(0.01)
+    time.sleep(0.5)
+    proc.terminate()
+    _, err = proc.communicate(timeout=30)
+    assert proc.returncode == 143, err
+    assert "Traceback" not in err
+    assert out.read_text() == "old results\n"
+    assert not list(tmp_path.glob(".circuitsim-*"))
+
+
+def test_a_sweep_table_on_a_full_disk_exits_3(tmp_path):
+    """The table's append fails (a file-size limit, as a full disk would): exit 3, one line."""
+    out = tmp_path / "t.csv"
+    code = ("import resource, sys, warnings; import circuitsim as cs;"
+            "warnings.simplefilter('ignore');"
+            f"cs.compile(cs.load({str(RC)!r}));"  # the model cache is written before the limit
+            "resource.setrlimit(resource.RLIMIT_FSIZE, (600, 600));"
+            "from circuitsim.cli.main import main;"
+            f"sys.exit(main(['sweep', {str(RC)!r}, '--set', 'R=1k,2k,3k,4k', '--jobs', '1', "
+            f"'--out', {str(out)!r}, '--quiet']))")
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          timeout=120, check=False)
+    assert proc.returncode == 3, proc.stderr
+    assert "t.csv" in proc.stderr and "Traceback" not in proc.stderr

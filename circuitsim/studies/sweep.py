@@ -293,10 +293,17 @@ class _Writer:
             self.fields += new
             self._rewrite()
             return
-        with open(self.path, "a", newline="", encoding="utf-8") as fh:
-            csv.DictWriter(fh, self.fields).writerow(row)
-            fh.flush()
-            os.fsync(fh.fileno())
+        try:
+            with open(self.path, "a", newline="", encoding="utf-8") as fh:
+                csv.DictWriter(fh, self.fields).writerow(row)
+                fh.flush()
+                os.fsync(fh.fileno())
+        except OSError as exc:
+            from circuitsim.files import OutputError
+
+            raise OutputError(f"cannot append to the sweep table '{self.path}': "
+                              f"{exc.strerror or exc}; the rows so far are kept, free space "
+                              f"and run again with --resume") from None
 
 
 def _compile_all(paths: Sequence[str | Path], grid: Mapping[str, Sequence[float]],
