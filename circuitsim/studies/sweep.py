@@ -156,6 +156,9 @@ def _run_one(model, run: Run, metrics: Metrics) -> dict[str, Any]:
             row[f"{name}.mean"] = float(h.offset) if h.amplitude > 0 else float(x[w].mean())
             row[f"{name}.ripple_freq"] = float(h.frequency)
             row[f"{name}.ripple_amp"] = float(h.amplitude)
+            # whether the window holds a periodic steady state at all (see ripple_summary):
+            # the columns above fit a sine whatever the window holds
+            row[f"{name}.ripple_state"] = signal.ripple_summary(res.t[w], x[w]).state
         except ValueError as exc:
             row[f"{name}.mean"] = float(x[w].mean())
             row["message"] = f"{name}: {exc}"
