@@ -632,9 +632,11 @@ def _add_inspection(sub) -> None:
 def build_parser() -> argparse.ArgumentParser:
     import circuitsim
 
-    ap = argparse.ArgumentParser(prog="circuitsim", description=__doc__.split("\n\n")[0]
-                                 .replace("\n", " "),
-                                 epilog=__doc__.split("\n\n")[1].replace("\n", " "))
+    ap = argparse.ArgumentParser(
+        prog="circuitsim", description="Acausal circuit-network simulator for "
+        "electromechanical systems: a YAML netlist in; transients, operating points, AC, "
+        "periodic steady states, sweeps, fits and diagnoses out. `circuitsim COMMAND -h` "
+        "for a command's options.", epilog=__doc__.split("\n\n")[1].replace("\n", " "))
     ap.add_argument("--version", action="version", version=f"circuitsim {circuitsim.__version__}")
     sub = ap.add_subparsers(dest="command", required=True, metavar="COMMAND")
     _add_run(sub)
