@@ -362,11 +362,15 @@ def _sweep_grid(first, items: list[str]) -> dict[str, list[float]]:
 
 def cmd_sweep(args) -> int:
     from circuitsim.cli.progress import count_bar
-    from circuitsim.netlist.load import load
+    from circuitsim.netlist.load import MAX_OUTPUT_POINTS, load, output_points, too_many_points
     from circuitsim.studies.sweep import Metrics, sweep
 
     nets = [load(n, allow_outside=args.allow_outside) for n in args.netlists]
     first = nets[0]
+    for net in nets:
+        points = output_points(args.stop or net.analysis.stop, net.analysis.step)
+        if points > MAX_OUTPUT_POINTS:
+            raise ParameterError(f"{net.path}: {too_many_points(points)}")
     inputs = [i for n in nets for i in n.inputs]
     for path, what in ((args.out, "--out"), (args.plot, "--plot")):
         if path:
