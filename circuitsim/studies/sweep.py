@@ -14,7 +14,6 @@ import csv
 import itertools
 import math
 import os
-import sys
 import time
 import warnings
 from collections.abc import Callable, Iterable, Mapping, Sequence
@@ -488,23 +487,3 @@ def _execute(todo: list[Run], models: Mapping[str, Any], metrics: Metrics,
     finally:
         if own:
             _stop_pool(pool)  # type: ignore[arg-type]
-
-
-def progress_bar(stream=sys.stderr) -> Callable[[int, int, dict], None]:
-    """A one-line progress bar for the CLI."""
-    start = time.perf_counter()
-
-    def show(done: int, total: int, row: dict) -> None:
-        width = 30
-        filled = int(width * done / max(total, 1))
-        el = time.perf_counter() - start
-        status = row.get("status", "")
-        stream.write(f"\r[{'#' * filled}{'.' * (width - filled)}] {done}/{total} "
-                     f"{el:6.1f} s  last: {status:<8}")
-        if done == total:
-            stream.write("\n")
-        stream.flush()
-
-    return show
-
-
