@@ -385,70 +385,39 @@ def harmonic(
     fit_frequency: bool = True,
     harmonics_in_model: bool = True,
 ) -> Harmonic:
-    """Fit one sinusoidal component of a sampled waveform.
-
-    Accurate for records holding a non-integer number of periods and for non-uniform
-    sampling. Offset and a linear trend are fitted simultaneously (see :class:`Harmonic`
-    for the model and the phase convention).
+    """Fit one sinusoidal component, offset and linear trend of a sampled waveform, accurate
+    for a non-integer number of periods and non-uniform sampling (:class:`Harmonic`: model and
+    phase convention; module docstring: the three stages).
 
     Parameters
     ----------
-    t : array_like
-        Sample times [s], finite and strictly increasing; spacing may vary.
-    x : array_like
-        Sample values [any unit], finite.
+    t, x : array_like
+        Sample times [s] (finite, strictly increasing, any spacing) and values [any unit].
     frequency : float, optional
-        Known (approximate) frequency [Hz]. With ``fit_frequency=True`` it seeds the
-        frequency search, which then stays within ±1.5 bins (1 bin = 1/T, T the record
-        duration); use `near` when the frequency is only roughly known. With
-        ``fit_frequency=False`` the fit is made at exactly this frequency.
-    near : float, optional
-        Search for the largest spectral peak within ``near·(1 ± rel_band)`` [Hz] instead
-        of the global peak. Mutually exclusive with `frequency`.
-    rel_band : float, optional
-        Relative half-width of the search band around `near` [-], default 0.05.
+        Known (approximate) frequency [Hz]: it seeds a search within ±1.5 bins (1 bin = 1/T,
+        T the record duration), or with ``fit_frequency=False`` is used as it is. Use `near`
+        when it is only roughly known.
+    near, rel_band : float, optional
+        Search the largest spectral peak within ``near·(1 ± rel_band)`` [Hz] (default band
+        0.05) instead of the global peak. Mutually exclusive with `frequency`.
     fit_frequency : bool, optional
-        Refine the frequency by least squares (default). If False, the frequency is
-        `frequency` if given, otherwise the interpolated FFT peak.
+        Refine the frequency by least squares (default); if False, `frequency` if given, else
+        the interpolated FFT peak.
     harmonics_in_model : bool, optional
-        Also fit sine/cosine pairs at 2f and 3f (those below 0.9·Nyquist) so that a
-        waveform's own harmonics do not bias the fundamental. On by default because,
-        measured without it, a 10 % second harmonic biases the amplitude of a
-        100-period fit by 4e-5 to 4e-4 relative (sidelobe leakage of the unwindowed
-        fit, of order 1/(π·Δf·T)); with it the error is at round-off level. Components
-        at frequencies other than f, 2f and 3f are *not* modelled and leak in the same
-        way: a tone of amplitude B at distance Δf [Hz] shifts each of the fitted
-        sine/cosine coefficients by at most about B·(1/(πΔfT) + 1/(πΣfT)), with Σf the
-        frequency sum.
+        Also fit the 2nd and 3rd harmonics (below 0.9·Nyquist), so that a waveform's own
+        harmonics do not bias the fundamental: without them a 10 % second harmonic biases a
+        100-period fit's amplitude by 4e-5 to 4e-4 (sidelobe leakage, ~1/(π·Δf·T)); with them
+        the error is at round-off. Other tones leak in the same way.
 
-    Returns
-    -------
-    Harmonic
-        Frequency [Hz], peak amplitude, phase at t = 0 [rad], offset, rms residual, trend.
-
-    Raises
-    ------
-    ValueError
-        For fewer than 8 samples, non-increasing or non-finite `t`, non-finite `x`,
-        both `frequency` and `near` given, a requested frequency that is not positive,
-        is above the Nyquist frequency (half the mean sample rate) or gives fewer than
-        2 periods in the record, or a signal with no non-DC spectral content.
+    Returns a :class:`Harmonic`. Raises ValueError for fewer than 8 samples, non-increasing
+    or non-finite `t`, non-finite `x`, both `frequency` and `near`, a requested frequency not
+    positive, above Nyquist (half the mean sample rate) or giving fewer than 2 periods, or no
+    non-DC spectral content.
     """
     t_arr, x_arr = _as_record(t, x, _MIN_SAMPLES)
-    n = t_arr.size
     duration = float(t_arr[-1] - t_arr[0])
-    nyquist = 0.5 * (n - 1) / duration
-    if frequency is not None and near is not None:
-        raise ValueError("give at most one of `frequency` and `near`")
-    if not (math.isfinite(rel_band) and rel_band > 0.0):
-        raise ValueError(f"rel_band must be positive and finite, got {rel_band}")
-    if frequency is not None:
-        f_start = _check_frequency("frequency", frequency, duration, nyquist)
-    else:
-        if near is not None:
-            near = _check_frequency("near", near, duration, nyquist)
-        f_start = _fft_peak_frequency(t_arr, x_arr, near, rel_band)
-
+    nyquist = 0.5 * (t_arr.size - 1) / duration
+    f_start = _start_frequency(t_arr, x_arr, frequency, near, rel_band, duration, nyquist)
     t_mid = 0.5 * (t_arr[0] + t_arr[-1])
     half = 0.5 * duration
     tc = t_arr - t_mid
@@ -458,31 +427,61 @@ def harmonic(
         for order in (2, 3):
             if order * f_start < _HARMONIC_NYQUIST_MARGIN * nyquist:
                 orders = order
-
     f_fit = f_start
     coef, rss = _linear_fit(tc, half, x_arr, f_fit, orders)
     if fit_frequency:
-        bin_width = 1.0 / duration
-        # Search in bins relative to the start so the optimiser's relative tolerance
-        # acts on the small offset, not on the (large) absolute frequency.
-        lo = max(-_SEARCH_HALF_WIDTH_BINS, (0.5 * bin_width - f_start) / bin_width)
-        hi = min(_SEARCH_HALF_WIDTH_BINS, (nyquist - f_start) / bin_width)
-        if hi > lo:
-            import scipy.optimize
+        f_fit, coef, rss = _refine_frequency(tc, half, x_arr, f_start, orders, duration,
+                                             nyquist, (f_fit, coef, rss))
+    return _as_harmonic(f_fit, coef, rss, t_mid, half, t_arr.size)
 
-            res = scipy.optimize.minimize_scalar(
-                lambda u: _linear_fit(tc, half, x_arr, f_start + u * bin_width, orders)[1],
-                bounds=(lo, hi),
-                method="bounded",
-                options={"xatol": _SEARCH_XATOL_BINS, "maxiter": 500},
-            )
-            f_try = f_start + float(res.x) * bin_width
-            coef_try, rss_try = _linear_fit(tc, half, x_arr, f_try, orders)
-            # Bounded Brent can in principle settle in a side minimum; never return a
-            # fit worse than the starting frequency.
-            if rss_try <= rss:
-                f_fit, coef, rss = f_try, coef_try, rss_try
 
+def _start_frequency(t_arr: np.ndarray, x_arr: np.ndarray, frequency: float | None,
+                     near: float | None, rel_band: float, duration: float,
+                     nyquist: float) -> float:
+    """Stage 1 of :func:`harmonic`: the given frequency [Hz], or the FFT peak (near ``near``)."""
+    if frequency is not None and near is not None:
+        raise ValueError("give at most one of `frequency` and `near`")
+    if not (math.isfinite(rel_band) and rel_band > 0.0):
+        raise ValueError(f"rel_band must be positive and finite, got {rel_band}")
+    if frequency is not None:
+        return _check_frequency("frequency", frequency, duration, nyquist)
+    if near is not None:
+        near = _check_frequency("near", near, duration, nyquist)
+    return _fft_peak_frequency(t_arr, x_arr, near, rel_band)
+
+
+def _refine_frequency(tc: np.ndarray, half: float, x_arr: np.ndarray, f_start: float,
+                      orders: int, duration: float, nyquist: float,
+                      start: tuple[float, np.ndarray, float]
+                      ) -> tuple[float, np.ndarray, float]:
+    """Stage 3 of :func:`harmonic`: the least-squares frequency within ±1.5 bins of
+    ``f_start`` [Hz]; returns (frequency, coefficients, rss), never worse than ``start``."""
+    bin_width = 1.0 / duration
+    # Search in bins relative to the start so the optimiser's relative tolerance
+    # acts on the small offset, not on the (large) absolute frequency.
+    lo = max(-_SEARCH_HALF_WIDTH_BINS, (0.5 * bin_width - f_start) / bin_width)
+    hi = min(_SEARCH_HALF_WIDTH_BINS, (nyquist - f_start) / bin_width)
+    if not hi > lo:
+        return start
+    import scipy.optimize
+
+    res = scipy.optimize.minimize_scalar(
+        lambda u: _linear_fit(tc, half, x_arr, f_start + u * bin_width, orders)[1],
+        bounds=(lo, hi),
+        method="bounded",
+        options={"xatol": _SEARCH_XATOL_BINS, "maxiter": 500},
+    )
+    f_try = f_start + float(res.x) * bin_width
+    coef_try, rss_try = _linear_fit(tc, half, x_arr, f_try, orders)
+    # Bounded Brent can in principle settle in a side minimum; never return a
+    # fit worse than the starting frequency.
+    if rss_try <= start[2]:
+        return f_try, coef_try, rss_try
+    return start
+
+
+def _as_harmonic(f_fit: float, coef: np.ndarray, rss: float, t_mid: float, half: float,
+                 n: int) -> Harmonic:
     a_sin, b_cos = float(coef[2]), float(coef[3])
     amplitude = math.hypot(a_sin, b_cos)
     phase_mid = math.atan2(b_cos, a_sin)
@@ -561,7 +560,8 @@ class Ripple:
     ripple is ``frequency`` [Hz] and ``amplitude`` [unit of x, peak]), 'settling' (the window
     still changes: a transient; a significant line, e.g. a decaying ring, is given for
     information) or 'none' (no significant spectral line: flat or noise). ``mean`` is the mean
-    of the window (over whole periods when periodic) [unit of x]; ``p_value`` is the false-alarm
+    of the window (of the fitted steady state when periodic) [unit of x]; ``p_value`` is the
+    false-alarm
     probability of the line (Fisher's g-test; 1.0 when there is none).
     """
 
@@ -630,8 +630,11 @@ def ripple_summary(t: np.ndarray, x: np.ndarray) -> Ripple:
     span = periods / h.frequency
     keep = tu >= tu[-1] - span
     state = "settling" if _drifts(tu[keep], xu[keep], span) else "periodic"
-    whole = float(np.mean(xu[keep][:-1])) if state == "periodic" else mean
-    return Ripple(state, whole, float(h.frequency), float(h.amplitude), p)
+    # periodic: the fit's offset is the mean of the steady state, free of the partial period
+    # and of the sampling grid (a sample mean over whole periods is off by up to a sample's
+    # share of the ripple)
+    level = float(h.offset) if state == "periodic" else mean
+    return Ripple(state, level, float(h.frequency), float(h.amplitude), p)
 
 
 def _drifts(t: np.ndarray, x: np.ndarray, span: float, mean_only: float | None = None) -> bool:

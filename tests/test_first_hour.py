@@ -248,3 +248,44 @@ def test_bode_phase_is_unwrapped():
     db, phase = captured["lines"]
     np.testing.assert_allclose(db, 20 * np.log10(np.abs(h)))
     assert np.all(np.diff(phase) < 0) and phase[-1] == pytest.approx(-270, abs=1)
+
+
+def _run_in_pty(args: list[str]) -> tuple[int, bytes]:
+    """Run the command with a pseudo-terminal (100 columns) as stdin, stdout and stderr."""
+    import fcntl
+    import os
+    import pty
+    import select
+    import struct
+    import subprocess
+    import sys
+    import termios
+
+    master, slave = pty.openpty()
+    fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack("HHHH", 24, 100, 0, 0))
+    proc = subprocess.Popen([sys.executable, "-m", "circuitsim.cli", *args], stdin=slave,
+                            stdout=slave, stderr=slave, close_fds=True)
+    os.close(slave)
+    out = b""
+    while select.select([master], [], [], 60)[0]:
+        try:
+            chunk = os.read(master, 4096)
+        except OSError:  # the command ended and closed the terminal
+            break
+        if not chunk:
+            break
+        out += chunk
+    os.close(master)
+    return proc.wait(timeout=60), out
+
+
+def test_progress_bar_on_a_terminal_only(tmp_path):
+    import subprocess
+    import sys
+
+    code, out = _run_in_pty(["run", str(RC), "--no-files"])
+    assert code == 0 and b"simulated:" in out and b"RC step: 0.005 s simulated" in out
+    piped = subprocess.run([sys.executable, "-m", "circuitsim.cli", "run", str(RC),
+                            "--no-files"], capture_output=True, text=True, timeout=120,
+                           check=False)
+    assert piped.returncode == 0 and "simulated:" not in piped.stderr

@@ -39,7 +39,18 @@ def _ts(rec, path, time_col: str) -> float:
     return float(np.mean(dt))
 
 
+def _check_outputs(args) -> None:
+    """Refuse before any work an output that is the input record or a folder."""
+    from circuitsim.files import check_output
+
+    for what in ("plot", "out"):
+        path = getattr(args, what, None)
+        if path:
+            check_output(path, [args.file], f"--{what}")
+
+
 def _cmd_emf(args) -> int:
+    _check_outputs(args)
     rec = _read_csv(args.file)
     th, w, v = (_col(rec, c, args.file) for c in (args.theta, args.omega, args.voltage))
     curve = emf_error_curve(th, w, v, args.pp, args.k_max, shift=args.shift)
@@ -82,6 +93,7 @@ def _observer_from_args(args, rec) -> tuple[ObserverResult, np.ndarray, np.ndarr
 
 
 def _cmd_observer(args) -> int:
+    _check_outputs(args)
     rec = _read_csv(args.file)
     obs, th, w = _observer_from_args(args, rec)
     t = _col(rec, args.time, args.file)
@@ -94,6 +106,7 @@ def _cmd_observer(args) -> int:
 
 
 def _cmd_cogging(args) -> int:
+    _check_outputs(args)
     rec = _read_csv(args.file)
     obs = None
     if args.t_dist in rec:
@@ -126,6 +139,7 @@ def _cmd_cogging(args) -> int:
 
 
 def _cmd_map(args) -> int:
+    _check_outputs(args)
     rec = _read_csv(args.file, args.where)
     th = _col(rec, args.angle, args.file)
     x = _col(rec, args.value, args.file)

@@ -167,14 +167,16 @@ def _check_names(model, names: list[str]) -> list[str]:
 
 
 def write_run_csv(res, path: str, names: list[str], after: float = 0.0,
-                  decimate: int = 1) -> None:
-    """Time and the named series, units in the header (``v_out [V]``), atomically; only the
-    points at or after ``after`` [s], every ``decimate``-th of them."""
+                  decimate: int = 1, units: bool = False) -> None:
+    """Time and the named series, atomically; only the points at or after ``after`` [s],
+    every ``decimate``-th of them. ``units``: the header says them (``v_out [V]``; the
+    readers of records and tables drop the brackets)."""
     import numpy as np
 
     keep = np.flatnonzero(res.t >= after)[::decimate]
-    units = res.model.meta["units"]
-    header = ["time [s]"] + [f"{n} [{units[n]}]" if units.get(n) else n for n in names]
+    known = res.model.meta["units"] if units else {}
+    header = ["time [s]" if units else "time"] + \
+        [f"{n} [{known[n]}]" if known.get(n) else n for n in names]
     data = np.column_stack([res.t[keep]] + [res[n][keep] for n in names])
 
     def write(tmp: str) -> None:
@@ -224,7 +226,7 @@ def cmd_run(args) -> int:
             print(f"warning: {w}", file=sys.stderr)
     res = _simulate(model, args, overrides)
     if res.t.size and files:
-        write_run_csv(res, files["csv"], names, args.after, args.decimate)
+        write_run_csv(res, files["csv"], names, args.after, args.decimate, args.header_units)
         plot(res, files["plot"], names=names, window=args.window)
     else:
         files = {}
@@ -360,11 +362,15 @@ def _sweep_grid(first, items: list[str]) -> dict[str, list[float]]:
 
 def cmd_sweep(args) -> int:
     from circuitsim.cli.progress import count_bar
-    from circuitsim.netlist.load import load
+    from circuitsim.netlist.load import MAX_OUTPUT_POINTS, load, output_points, too_many_points
     from circuitsim.studies.sweep import Metrics, sweep
 
     nets = [load(n, allow_outside=args.allow_outside) for n in args.netlists]
     first = nets[0]
+    for net in nets:
+        points = output_points(args.stop or net.analysis.stop, net.analysis.step)
+        if points > MAX_OUTPUT_POINTS:
+            raise ParameterError(f"{net.path}: {too_many_points(points)}")
     inputs = [i for n in nets for i in n.inputs]
     for path, what in ((args.out, "--out"), (args.plot, "--plot")):
         if path:
@@ -539,6 +545,8 @@ def _add_run(sub) -> None:
                         "keeps the earlier points out of memory")
     r.add_argument("--decimate", type=int, default=1, metavar="N",
                    help="write every N-th point (the summary uses all of them)")
+    r.add_argument("--header-units", action="store_true",
+                   help="units in the CSV header ('v_out [V]'); fit and diagnose read them")
     r.add_argument("--json", action="store_true", help="print one JSON object")
     r.add_argument("--quiet", action="store_true", help="no progress bar")
     r.add_argument("--window", type=float, default=0.2,
@@ -628,9 +636,11 @@ def _add_inspection(sub) -> None:
 def build_parser() -> argparse.ArgumentParser:
     import circuitsim
 
-    ap = argparse.ArgumentParser(prog="circuitsim", description=__doc__.split("\n\n")[0]
-                                 .replace("\n", " "),
-                                 epilog=__doc__.split("\n\n")[1].replace("\n", " "))
+    ap = argparse.ArgumentParser(
+        prog="circuitsim", description="Acausal circuit-network simulator for "
+        "electromechanical systems: a YAML netlist in; transients, operating points, AC, "
+        "periodic steady states, sweeps, fits and diagnoses out. `circuitsim COMMAND -h` "
+        "for a command's options.", epilog=__doc__.split("\n\n")[1].replace("\n", " "))
     ap.add_argument("--version", action="version", version=f"circuitsim {circuitsim.__version__}")
     sub = ap.add_subparsers(dest="command", required=True, metavar="COMMAND")
     _add_run(sub)

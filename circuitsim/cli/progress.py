@@ -12,6 +12,13 @@ from contextlib import contextmanager
 from typing import Any
 
 
+def _width() -> int:
+    # a terminal that reports 0 columns (some pseudo-terminals) would get an empty bar
+    import shutil
+
+    return shutil.get_terminal_size().columns
+
+
 def enabled(quiet: bool = False) -> bool:
     """Draw bars only for a person watching: stderr is a terminal and --quiet was not given."""
     return not quiet and sys.stderr.isatty()
@@ -25,13 +32,34 @@ def time_bar(stop: float, quiet: bool = False) -> Iterator[Callable[[float], Non
         return
     from tqdm import tqdm
 
-    with tqdm(total=stop, unit="s", unit_scale=True, desc="simulated", file=sys.stderr,
+    with tqdm(total=stop, unit="s", desc="simulated", file=sys.stderr, ncols=_width(),
               leave=False, bar_format="{desc}: {percentage:3.0f}%|{bar}| {n:.4g}/{total:.4g} s "
-              "[{elapsed}<{remaining}]") as bar:
+              "[{elapsed}<{remaining}]") as bar, _ticking(bar):
         def update(t: float) -> None:
             bar.update(max(0.0, min(t, stop) - bar.n))
 
         yield update
+
+
+@contextmanager
+def _ticking(bar) -> Iterator[None]:
+    """Redraw ``bar`` every second: the integrator reports only at waveform corners and
+    every 50 000 output points, and a bar whose clock stands still looks like a hang."""
+    import threading
+
+    done = threading.Event()
+
+    def tick() -> None:
+        while not done.wait(1.0):
+            bar.refresh()
+
+    thread = threading.Thread(target=tick, daemon=True)
+    thread.start()
+    try:
+        yield
+    finally:
+        done.set()
+        thread.join(timeout=2)
 
 
 @contextmanager
@@ -43,7 +71,7 @@ def count_bar(total: int, desc: str, quiet: bool = False
         return
     from tqdm import tqdm
 
-    with tqdm(total=total, desc=desc, unit="run", file=sys.stderr, leave=False) as bar:
+    with tqdm(total=total, desc=desc, unit="run", file=sys.stderr, ncols=_width(), leave=False) as bar:
         def update(done: int, total_: int, row: dict[str, Any]) -> None:
             bar.total = total_
             bar.set_postfix_str(f"last: {row.get('status', '')}", refresh=False)
@@ -61,7 +89,7 @@ def status_line(desc: str, quiet: bool = False) -> Iterator[Callable[[str], None
         return
     from tqdm import tqdm
 
-    with tqdm(desc=desc, unit="step", file=sys.stderr, leave=False,
+    with tqdm(desc=desc, unit="step", file=sys.stderr, ncols=_width(), leave=False,
               bar_format="{desc}: {n} steps [{elapsed}] {postfix}") as bar:
         def update(message: str) -> None:
             bar.set_postfix_str(str(message)[:60], refresh=False)

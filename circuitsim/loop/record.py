@@ -337,24 +337,30 @@ def _parse_feature(e: Any, loc: SourceLoc, i: int) -> list[Feature]:
     probe = e.get("probe")
     if not isinstance(probe, str) or not probe:
         raise DataError(f"{where} ({kind}) needs 'probe: NAME' (a probe of the netlist)", loc)
-
-    def sigma(key: str) -> tuple[float | None, Any]:
-        if key not in e:
-            return None, None
-        s, dim = _feature_value(e[key], loc, f"{where}: {key}")
-        if not s > 0:
-            raise DataError(f"{where}: {key} must be positive (a standard deviation), got "
-                            f"{s:g}", loc)
-        return s, dim
-
     if kind == "mean":
         if "value" not in e:
             raise DataError(f"{where} (mean of {probe}) needs 'value:', e.g. 'value: 6200 rpm'",
                             loc)
         v, dim = _feature_value(e["value"], loc, f"{where}: value")
-        s, sdim = sigma("sigma")
+        s, sdim = _sigma(e, "sigma", loc, where)
         _same_dim(dim, sdim, loc, where)
         return [Feature("mean", probe, v, s, None, loc, dim)]
+    return _harmonic_features(e, loc, where, probe)
+
+
+def _sigma(e: Mapping, key: str, loc: SourceLoc, where: str) -> tuple[float | None, Any]:
+    """The standard deviation ``key`` of a feature entry (None when not given)."""
+    if key not in e:
+        return None, None
+    s, dim = _feature_value(e[key], loc, f"{where}: {key}")
+    if not s > 0:
+        raise DataError(f"{where}: {key} must be positive (a standard deviation), got "
+                        f"{s:g}", loc)
+    return s, dim
+
+
+def _harmonic_features(e: Mapping, loc: SourceLoc, where: str, probe: str) -> list[Feature]:
+    """The amplitude and/or frequency features of one 'harmonic' entry."""
     if "order" not in e:
         raise DataError(f"{where} (harmonic of {probe}) needs 'order:' (per shaft revolution, "
                         f"e.g. 8 for a 2-pole 8-slot motor)", loc)
@@ -370,7 +376,7 @@ def _parse_feature(e: Any, loc: SourceLoc, i: int) -> list[Feature]:
         if not v > 0:
             raise DataError(f"{where}: amplitude must be positive (a peak value), got {v:g}",
                             loc)
-        s, sdim = sigma("sigma")
+        s, sdim = _sigma(e, "sigma", loc, where)
         _same_dim(dim, sdim, loc, where)
         feats.append(Feature("amplitude", probe, v, s, order, loc, dim))
     elif "sigma" in e:
@@ -380,7 +386,7 @@ def _parse_feature(e: Any, loc: SourceLoc, i: int) -> list[Feature]:
         v, dim = _feature_value(e["frequency"], loc, f"{where}: frequency")
         if not v > 0:
             raise DataError(f"{where}: frequency must be positive, got {v:g}", loc)
-        s, sdim = sigma("sigma_frequency")
+        s, sdim = _sigma(e, "sigma_frequency", loc, where)
         _same_dim(dim, sdim, loc, where)
         feats.append(Feature("frequency", probe, v, s, order, loc, dim))
     return feats

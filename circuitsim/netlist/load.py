@@ -678,6 +678,14 @@ class _Builder:
         scalars = {k: d for k, d in decl.items() if isinstance(d, Param)}
         self.params_of({k: entry[k] for k in scalars if k in entry}, scalars, loc_of, name,
                        f"{name}.", "1", values, "parameter")
+        self.declared_values(entry, decl, loc_of, name, path, values, structure, tables)
+        return ComponentSpec(name, typ, cls, tuple(ports), values, structure, loc,
+                             tuple(tables))
+
+    def declared_values(self, entry: Mapping, decl: Mapping[str, Any], loc_of, name: str,
+                        path: str, values: dict[str, Value], structure: dict[str, Any],
+                        tables: list[TableData]) -> None:
+        """Options, record lists, signals and expressions of one component entry."""
         for key, d in decl.items():
             if isinstance(d, Option):
                 val = entry.get(key, d.default)
@@ -706,8 +714,6 @@ class _Builder:
             elif isinstance(d, Expression):
                 structure[key] = self.expression(entry.get(key), loc_of(key), name, key, d,
                                                  values)
-        return ComponentSpec(name, typ, cls, tuple(ports), values, structure, loc,
-                             tuple(tables))
 
     def expression(self, raw: Any, loc: SourceLoc, comp: str, key: str, d: Expression,
                    values: dict[str, Value]) -> str:

@@ -14,7 +14,6 @@ import csv
 import itertools
 import math
 import os
-import sys
 import time
 import warnings
 from collections.abc import Callable, Iterable, Mapping, Sequence
@@ -156,6 +155,9 @@ def _run_one(model, run: Run, metrics: Metrics) -> dict[str, Any]:
             row[f"{name}.mean"] = float(h.offset) if h.amplitude > 0 else float(x[w].mean())
             row[f"{name}.ripple_freq"] = float(h.frequency)
             row[f"{name}.ripple_amp"] = float(h.amplitude)
+            # whether the window holds a periodic steady state at all (see ripple_summary):
+            # the columns above fit a sine whatever the window holds
+            row[f"{name}.ripple_state"] = signal.ripple_summary(res.t[w], x[w]).state
         except ValueError as exc:
             row[f"{name}.mean"] = float(x[w].mean())
             row["message"] = f"{name}: {exc}"
@@ -293,10 +295,17 @@ class _Writer:
             self.fields += new
             self._rewrite()
             return
-        with open(self.path, "a", newline="", encoding="utf-8") as fh:
-            csv.DictWriter(fh, self.fields).writerow(row)
-            fh.flush()
-            os.fsync(fh.fileno())
+        try:
+            with open(self.path, "a", newline="", encoding="utf-8") as fh:
+                csv.DictWriter(fh, self.fields).writerow(row)
+                fh.flush()
+                os.fsync(fh.fileno())
+        except OSError as exc:
+            from circuitsim.files import OutputError
+
+            raise OutputError(f"cannot append to the sweep table '{self.path}': "
+                              f"{exc.strerror or exc}; the rows so far are kept, free space "
+                              f"and run again with --resume") from None
 
 
 def _compile_all(paths: Sequence[str | Path], grid: Mapping[str, Sequence[float]],
@@ -478,23 +487,3 @@ def _execute(todo: list[Run], models: Mapping[str, Any], metrics: Metrics,
     finally:
         if own:
             _stop_pool(pool)  # type: ignore[arg-type]
-
-
-def progress_bar(stream=sys.stderr) -> Callable[[int, int, dict], None]:
-    """A one-line progress bar for the CLI."""
-    start = time.perf_counter()
-
-    def show(done: int, total: int, row: dict) -> None:
-        width = 30
-        filled = int(width * done / max(total, 1))
-        el = time.perf_counter() - start
-        status = row.get("status", "")
-        stream.write(f"\r[{'#' * filled}{'.' * (width - filled)}] {done}/{total} "
-                     f"{el:6.1f} s  last: {status:<8}")
-        if done == total:
-            stream.write("\n")
-        stream.flush()
-
-    return show
-
-
