@@ -142,7 +142,7 @@ SPICE_SCALE = {"f": 1e-15, "p": 1e-12, "n": 1e-9, "u": 1e-6, "µ": 1e-6, "μ": 1
 # Letters that are also an SI unit symbol a netlist may mean: with no expected unit to decide,
 # they keep the SI meaning (a wrong guess then fails the dimension check loudly, while a bare
 # SPICE number would be taken silently in any unit).
-_SI_SYMBOLS = frozenset({"m", "g", "F", "T", "N"})
+_SI_SYMBOLS = frozenset({"m", "g", "F", "T", "N", "K"})
 _SPICE_NUMBER = re.compile(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*([A-Za-zµμ]+)\s*")
 
 
@@ -153,7 +153,8 @@ def spice_value(text: str, target: Dim | None = None) -> str | None:
     The femto trap, decided: letters that are also a unit of the expected dimension ``target``
     are that unit, so ``1F`` on a capacitor is one farad (write ``1f`` or ``1 fF`` for femto),
     ``3m`` on a length three metres, ``5g`` on a mass five grams. With no expected dimension
-    (a netlist parameter), ``m g F T N`` keep their SI meaning. ``1M`` is refused (ValueError):
+    (a netlist parameter), ``m g F T N K`` keep their SI meaning (``293.15 K`` is kelvin;
+    write ``10k`` for kilo there). ``1M`` is refused (ValueError):
     milli in SPICE, mega to most readers; write ``1m`` or ``1meg``.
     """
     match = _SPICE_NUMBER.fullmatch(text)

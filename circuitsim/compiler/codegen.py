@@ -18,7 +18,7 @@ from __future__ import annotations
 
 from typing import Any
 
-CODEGEN_VERSION = "8"
+CODEGEN_VERSION = "9"
 
 
 def _printers():
@@ -46,6 +46,18 @@ def _printers():
         def _print_Pmod(self, e):
             x, per = (self._print(a) for a in e.args)
             return f"numpy.mod({x}, {per})"
+
+        def _print_Piecewise(self, e):
+            # nested where(): broadcasts a constant branch against an array one, which
+            # numpy.select (the printer's default) refuses
+            pieces = list(e.args)
+            last = pieces.pop()
+            out = self._print(last.expr) if bool(last.cond == True) else "numpy.nan"
+            if not bool(last.cond == True):
+                pieces.append(last)
+            for expr, cond in reversed(pieces):
+                out = f"numpy.where({self._print(cond)}, {self._print(expr)}, {out})"
+            return out
 
     return Scalar({"fully_qualified_modules": True, "standard": "python3"}), \
         Vector({"fully_qualified_modules": True})

@@ -534,9 +534,9 @@ def _check_param_name(name: str, loc: SourceLoc) -> None:
                              f"'R1.v'; rename it", loc)
 
 
-def _order_params(raw: _Raw) -> dict[str, GlobalParam]:
+def _order_params(raw: _Raw, scoped: set[str] = frozenset()) -> dict[str, GlobalParam]:
     for k, (_, loc) in raw.params.items():
-        _check_param_name(k, loc)
+        _check_param_name(k.rsplit(".", 1)[-1] if k in scoped else k, loc)
     nodes = {k: _parse_value(v, loc, f"parameter '{k}'") for k, (v, loc) in raw.params.items()}
     order: list[str] = []
     state: dict[str, int] = {}
@@ -836,9 +836,12 @@ def build(raw: RawNetlist) -> Netlist:
     """Type a raw netlist (as read, or as patched): the second half of ``load``."""
     import circuitsim_components  # noqa: F401 - fills the registries
 
+    written = set(raw.params)
     raw = flatten(raw)  # subcircuit instances become scoped components
     path = Path(raw.path)
-    params = _order_params(raw)
+    # an instance's parameters are scoped by the flattening (X1.R): the user wrote the plain
+    # name after the dot, and that is what is checked
+    params = _order_params(raw, set(raw.params) - written)
     nodes: dict[str, tuple[str, SourceLoc]] = {}
     b = _Builder(params, nodes, raw.root)
     comps: list[ComponentSpec] = []
