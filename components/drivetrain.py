@@ -148,7 +148,7 @@ class SpeedSource(OneFlange):
         return [x.w - self.W]
 
 
-@register("angle", "position_source")
+@register("angle", "angle_source")
 class AngleSource(OneFlange):
     """Position source: the shaft angle follows Phi(t) (from phi = 0 at t = 0 for a
     consistent start).
@@ -225,3 +225,20 @@ class VelocitySource(OneTFlange):
 
     def equations(self, x):
         return [x.v - self.V]
+
+
+@register("tposition", "position_source")
+class PositionSource(OneTFlange):
+    """Position source: the flange position follows X(t) (from x = 0 at t = 0 for a
+    consistent start).
+
+    Parameters
+    ----------
+    X : [m] value or waveform
+    """
+
+    branches = (Branch("flange", None, "V"),)
+    X = Signal("m", "imposed position")
+
+    def equations(self, x):
+        return [x.flange.x - self.X]

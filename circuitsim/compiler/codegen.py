@@ -43,6 +43,12 @@ def _printers():
             x, per = (self._print(a) for a in e.args)
             return f"numpy.mod({x}, {per})"
 
+        def _print_And(self, e):  # numpy's logical_and.reduce fails on an array and a scalar
+            return f"functools.reduce(numpy.logical_and, [{', '.join(map(self._print, e.args))}])"
+
+        def _print_Or(self, e):
+            return f"functools.reduce(numpy.logical_or, [{', '.join(map(self._print, e.args))}])"
+
     return Scalar({"fully_qualified_modules": True, "standard": "python3"}), \
         Vector({"fully_qualified_modules": True})
 
