@@ -13,10 +13,11 @@ from . import (
     mechanical,
     passive,
     sources,
+    switches,
     thermal,
     varistor,
     waveforms,
 )
 
 __all__ = ["bldc", "controlled", "diode", "drivetrain", "emf", "mechanical", "passive",
-           "sources", "thermal", "varistor", "waveforms"]
+           "sources", "switches", "thermal", "varistor", "waveforms"]

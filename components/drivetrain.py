@@ -148,7 +148,7 @@ class SpeedSource(OneFlange):
         return [x.w - self.W]
 
 
-@register("angle", "position_source")
+@register("angle", "angle_source")
 class AngleSource(OneFlange):
     """Position source: the shaft angle follows Phi(t) (from phi = 0 at t = 0 for a
     consistent start).
@@ -225,3 +225,73 @@ class VelocitySource(OneTFlange):
 
     def equations(self, x):
         return [x.v - self.V]
+
+
+@register("tposition", "position_source")
+class PositionSource(OneTFlange):
+    """Position source: the flange position follows X(t) (from x = 0 at t = 0 for a
+    consistent start).
+
+    Parameters
+    ----------
+    X : [m] value or waveform
+    """
+
+    branches = (Branch("flange", None, "V"),)
+    X = Signal("m", "imposed position")
+
+    def equations(self, x):
+        return [x.flange.x - self.X]
+
+
+@register("clutch", "brake_clutch")
+class Clutch(TwoFlange):
+    """Friction clutch between two shafts (a brake when b is ``fixed``), regularised Coulomb
+    friction: tau = mu fn(t) tanh(w_rel / w_slip). It slips while |w_rel| >> w_slip and
+    (nearly) sticks below it: sticking is a creep of w_rel ~ w_slip tau / (mu fn), not
+    exact adhesion (that needs events).
+
+    Parameters
+    ----------
+    fn : [N*m] normal-force torque capacity (friction radius times normal force), value or
+        waveform (0 releases the clutch)
+    mu : [1] friction coefficient, default 1
+    w_slip : [rad/s] regularisation speed, default 1e-3
+    """
+
+    branches = (Branch("a", "b", "R"),)
+    fn = Signal("N*m", "torque capacity times friction radius")
+    mu = Param("1", "friction coefficient", default=1.0, nonnegative=True)
+    w_slip = Param("rad/s", "regularisation speed", default=1e-3, positive=True)
+
+    def equations(self, x):
+        return [x.tau - self.mu * self.fn * sp.tanh(x.w_rel / self.w_slip)]
+
+
+@register("backlash", "elasto_backlash")
+class Backlash(TwoFlange):
+    """Spring-damper with a gap (Modelica's ElastoBacklash): no torque while |phi_rel| <
+    gap/2, tau = c (phi_rel -+ gap/2) + d w_rel in contact (the damping never pulls the
+    sides together).
+
+    Parameters
+    ----------
+    gap : [rad] total play
+    c : [N*m/rad] contact stiffness
+    d : [N*m*s/rad] contact damping, default 0
+    """
+
+    branches = (Branch("a", "b", "L"),)
+    gap = Param("rad", "total play", nonnegative=True)
+    c = Param("N*m/rad", "contact stiffness", positive=True)
+    d = Param("N*m*s/rad", "contact damping", default=0.0, nonnegative=True)
+
+    def equations(self, x):
+        x.phi_rel = x.a.phi - x.b.phi
+        h = self.gap / 2
+        push = sp.Piecewise((self.c * (x.phi_rel - h) + self.d * x.w_rel, x.phi_rel > h),
+                            (self.c * (x.phi_rel + h) + self.d * x.w_rel, x.phi_rel < -h),
+                            (0, True))
+        # in contact the damper may slow the approach but never glue the sides
+        tau = sp.Piecewise((sp.Max(push, 0), x.phi_rel > h), (sp.Min(push, 0), True))
+        return [x.tau - tau]

@@ -47,8 +47,9 @@ class Step(Waveform):
 #: Steps per period of a smooth periodic source that bound IDA's largest step. A diode fed by a
 #: sine stops conducting for most of each period; with nothing changing in the circuit IDA grows
 #: its step past the period and skips whole conduction windows (v_C(10 s) 6.65 V instead of
-#: 8.263 V in netlists/breadth/diode_charge.yaml). Period/2 still fails there (5.21 V), period/4
-#: already agrees to 1e-5; period/20 leaves a wide margin at a cost of 20 steps per period.
+#: 8.263 V in netlists/breadth/diode_charge.yaml). Period/2 still fails there, period/4 is right
+#: in some runs and 0.2 V off in others (benchmarks/bench_step_bound.py); period/20 is right
+#: with a margin, at 20 steps per period (1.2x the time on a smooth RC).
 STEPS_PER_PERIOD = 20
 
 

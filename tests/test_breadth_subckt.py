@@ -167,3 +167,20 @@ def test_flat_netlist_written_back_reloads(tmp_path) -> None:
     again = cs.load(tmp_path / "out.yaml")
     assert [c.name for c in again.components] == [c.name for c in first.components]
     assert again.global_values()["X1.R"] == pytest.approx(2000.0)
+
+
+def test_a_source_inside_a_block_is_named_by_its_scoped_name(tmp_path) -> None:
+    net = _write(tmp_path, "net.yaml", """
+        subcircuits:
+          osc:
+            ports: [out]
+            components:
+              - {name: V1, type: V, p: out, n: gnd, V: {sine: {amplitude: 1 V, freq: 1 THz}}}
+        components:
+          - {name: X1, type: osc, out: a}
+          - {name: R1, type: R, p: a, n: gnd, R: 1 kohm}
+        analysis: {stop: 1 s, step: 1 ms}
+    """)
+    with pytest.raises(cs.ParameterError, match=r"net.yaml:5 \(in X1 at .*net.yaml:7\): "
+                                                 r"X1.V1: the sine source repeats"):
+        cs.compile(cs.load(net)).simulate()

@@ -59,6 +59,12 @@ def _printers():
                 out = f"numpy.where({self._print(cond)}, {self._print(expr)}, {out})"
             return out
 
+        def _print_And(self, e):  # numpy's logical_and.reduce fails on an array and a scalar
+            return f"functools.reduce(numpy.logical_and, [{', '.join(map(self._print, e.args))}])"
+
+        def _print_Or(self, e):
+            return f"functools.reduce(numpy.logical_or, [{', '.join(map(self._print, e.args))}])"
+
     return Scalar({"fully_qualified_modules": True, "standard": "python3"}), \
         Vector({"fully_qualified_modules": True})
 

@@ -337,7 +337,12 @@ def _behavioural(node, names: Mapping[str, Any], unit: str, units: Mapping[str, 
 
     def dim(n: str):
         u = units.get(n)
-        return pdims.get(n) if not u else None if u in ("V", "A", "W") else unit_info(u)[1]
+        if not u:
+            return pdims.get(n)
+        try:
+            return None if u in ("V", "A", "W") else unit_info(u)[1]
+        except ValueError:  # a unit pint does not know: leave the name unchecked
+            return None
 
     env = {n: dim(n) for n in ex.names(node)}
     env["t"] = unit_info("s")[1]

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any
 
@@ -12,9 +12,11 @@ from circuitsim.errors import NetlistError, SourceLoc
 MAX_POINTS = 1000
 
 
-def pwl_points(body: Any, path: str, loc: SourceLoc, comp: str) -> Any:
+def pwl_points(body: Any, path: str, loc: SourceLoc, comp: str,
+               check: Callable[[Path], None] | None = None) -> Any:
     """The inline ``[[t, v], ...]`` form of a PWL given as a CSV file (SI numbers), or
-    ``body`` unchanged when it is already inline."""
+    ``body`` unchanged when it is already inline. ``check`` vets the file before it is read
+    (the loader's rule for where input files may lie and how large they may be)."""
     if not isinstance(body, Mapping):
         return body
     from circuitsim.netlist.tables import read_column
@@ -25,6 +27,8 @@ def pwl_points(body: Any, path: str, loc: SourceLoc, comp: str) -> Any:
                            "optionally time: NAME); inline it is [[t0, v0], [t1, v1], ...]",
                            loc, comp)
     file = Path(path).parent / str(body["file"])
+    if check is not None:
+        check(file)
     x, y = read_column(file, str(body["column"]), str(body.get("time", "time")), loc, comp)
     if len(x) > MAX_POINTS:
         raise NetlistError(f"pwl file '{file.name}' has {len(x)} points (at most {MAX_POINTS}: "

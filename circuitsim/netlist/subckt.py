@@ -135,9 +135,16 @@ def _expand(entry: Mapping, loc: SourceLoc, file: str, defs: Mapping[str, Subckt
                 if k in _port_names(c, defs) and str(v) not in nodes and str(v) not in REFERENCES}
     rename = _renamer(f"{name}.", set(sub.params), nodes, local | internal)
     via = f"{name} at {loc}"
+    # every parameter made here has a ScopedLoc: its dotted name is the flattener's, never
+    # the user's (whose parameter names may not hold a dot)
     for k, (default, dloc) in sub.params.items():
-        out.params[f"{name}.{k}"] = (entry[k], _line(file, entry, key=k)) if k in entry else \
-            (_rename_value(default, rename), ScopedLoc(dloc.file, dloc.line, via))
+        if k in entry:
+            iloc = _line(file, entry, key=k)
+            out.params[f"{name}.{k}"] = (entry[k], ScopedLoc(iloc.file, iloc.line,
+                                                             f"instance {name}"))
+        else:
+            out.params[f"{name}.{k}"] = (_rename_value(default, rename),
+                                         ScopedLoc(dloc.file, dloc.line, via))
     for k, (text, ploc) in sub.probes.items():
         out.probes[f"{name}.{k}"] = (_rename_value(text, rename), ScopedLoc(ploc.file,
                                                                            ploc.line, via))

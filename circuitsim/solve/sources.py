@@ -29,7 +29,8 @@ def _sources(model, values: Mapping[str, float]):
 
     for kind, fields in model.meta["breaks"]:
         p = {f: values[name] for f, name in fields}
-        owner = fields[0][1].split(".")[0] if fields else "?"
+        # parameter names are COMPONENT.SIGNAL.FIELD (a component in a subcircuit is X1.V1)
+        owner = fields[0][1].rsplit(".", 2)[0] if fields else "?"
         yield owner, kind, WAVEFORMS[kind](), p
 
 
