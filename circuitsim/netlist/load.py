@@ -752,7 +752,9 @@ class _Builder:
         body = raw[kind]
         prefix = f"{comp}.{key}."
         if kind == "pwl":
-            body = pwl_points(body, path, loc, comp)  # from a CSV file: the inline form
+            # from a CSV file: the inline form; the file under the same rule as a table's
+            body = pwl_points(body, path, loc, comp, check=lambda f: self._input_file(
+                f, "pwl file", loc, comp))
             return kind, self.pwl(body, loc, comp, key, d, values, prefix)
         if kind == "table":
             if not isinstance(body, Mapping) or "file" not in body or "column" not in body:
@@ -792,11 +794,16 @@ class _Builder:
         from circuitsim.netlist.tables import read_column
 
         file = Path(path).parent / str(body["file"])
-        check_input_file(file, self.root, "table file", loc, MAX_TABLE_BYTES, comp)
+        self._input_file(file, "table file", loc, comp)
         x, y = read_column(file, str(body["column"]), str(body.get("time", "time")), loc, comp)
         self.n_tables += 1
-        self.table_files.append(str(file))
         return TableData(x, y, f"{file.name}:{body['column']}")
+
+    def _input_file(self, file: Path, what: str, loc: SourceLoc, comp: str) -> None:
+        """A data file the netlist reads: inside its tree (unless allowed), a regular file of
+        bounded size; remembered as an input (no output may overwrite it)."""
+        check_input_file(file, self.root, what, loc, MAX_TABLE_BYTES, comp)
+        self.table_files.append(str(file))
 
     def bind_node(self, node: str, domain: str, loc: SourceLoc, comp: str, port: str) -> None:
         if node in DOMAINS[domain].references:
