@@ -535,8 +535,15 @@ def _check_param_name(name: str, loc: SourceLoc) -> None:
 
 
 def _order_params(raw: _Raw, scoped: set[str] = frozenset()) -> dict[str, GlobalParam]:
+    # a dotted name (a subcircuit instance's parameter, X1.R, as flattened or written back)
+    # is safe while its prefix names no component or node: it can then mean nothing else
+    taken = {str(e.get("name")) for e, _, _ in raw.comps} | {
+        v for e, _, _ in raw.comps for v in e.values() if isinstance(v, str)}
     for k, (_, loc) in raw.params.items():
-        _check_param_name(k.rsplit(".", 1)[-1] if k in scoped else k, loc)
+        prefix, _, leaf = k.rpartition(".")
+        plain = k in scoped or (prefix and prefix not in taken and
+                                all(_IDENT.fullmatch(part) for part in prefix.split(".")))
+        _check_param_name(leaf if plain else k, loc)
     nodes = {k: _parse_value(v, loc, f"parameter '{k}'") for k, (v, loc) in raw.params.items()}
     order: list[str] = []
     state: dict[str, int] = {}
