@@ -135,6 +135,9 @@ def search(setup: Setup, state: ModelState, screen_top: int, clock: dict[str, fl
             break
         state = _accept(setup, state, winner, log)
         state = _backward(setup, _swap(setup, state, log), log)
+        # with another effect in place, what was rejected may now be needed (an offset that
+        # only shows once the friction is there): every candidate is open again
+        log["tried"] = set()
     return state, log
 
 
