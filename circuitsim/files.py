@@ -170,19 +170,7 @@ def read_rows(path: str | os.PathLike, error: RowError) -> tuple[list[str], list
 
     Raises ``error(...)`` for a missing, unreadable or non-UTF-8 file.
     """
-    p = os.fspath(path)
-    try:
-        with open(p, encoding="utf-8", newline="") as fh:
-            rows = list(csv.reader(fh))
-    except FileNotFoundError:
-        raise error(f"data file '{p}' not found. Check the path", 0) from None
-    except IsADirectoryError:
-        raise error(f"data file '{p}' is a folder, not a CSV file", 0) from None
-    except OSError as exc:
-        raise error(f"cannot read data file '{p}': {exc.strerror}", 0) from None
-    except UnicodeDecodeError:
-        raise error(f"data file '{p}' is not UTF-8 text. Export it as a CSV text file",
-                    0) from None
+    rows = _csv_rows(path, error, list)
     rows = [r for r in rows if any(c.strip() for c in r)]  # blank lines carry nothing
     if not rows:
         return [], []  # the caller says what an empty file should have held
@@ -193,12 +181,21 @@ def read_rows(path: str | os.PathLike, error: RowError) -> tuple[list[str], list
 def read_header(path: str | os.PathLike, error: RowError) -> list[str]:
     """The header of a CSV file (stripped, units in brackets dropped; [] when the file holds
     no row), reading only its first lines. Raises ``error(...)`` as :func:`read_rows`."""
+    def first(reader) -> list[str]:
+        for row in reader:
+            if any(c.strip() for c in row):
+                return [_UNIT_SUFFIX.sub("", h.strip()) for h in row]
+        return []
+
+    return _csv_rows(path, error, first)
+
+
+def _csv_rows(path: str | os.PathLike, error: RowError, take):
+    """``take(csv.reader)`` on the opened file; the file's own faults raised as ``error``."""
     p = os.fspath(path)
     try:
         with open(p, encoding="utf-8", newline="") as fh:
-            for row in csv.reader(fh):
-                if any(c.strip() for c in row):
-                    return [_UNIT_SUFFIX.sub("", h.strip()) for h in row]
+            return take(csv.reader(fh))
     except FileNotFoundError:
         raise error(f"data file '{p}' not found. Check the path", 0) from None
     except IsADirectoryError:
@@ -208,7 +205,6 @@ def read_header(path: str | os.PathLike, error: RowError) -> list[str]:
     except UnicodeDecodeError:
         raise error(f"data file '{p}' is not UTF-8 text. Export it as a CSV text file",
                     0) from None
-    return []
 
 
 def read_body(path: str | os.PathLike, header: list[str], error: RowError,

@@ -277,7 +277,7 @@ def load_features(path: str | Path) -> FeatureSet:
     from ruamel.yaml import YAML
     from ruamel.yaml.error import YAMLError
 
-    from circuitsim.netlist.load import _loc
+    from circuitsim.netlist.lines import yaml_line as _loc
 
     p = str(path)
     try:

@@ -34,6 +34,7 @@ from circuitsim.component import (
 from circuitsim.errors import NetlistError, ParameterError, SourceLoc
 from circuitsim.files import atomic_write
 from circuitsim.netlist import expr as ex
+from circuitsim.netlist.lines import yaml_line as _loc
 from circuitsim.netlist.pwlfile import pwl_points
 from circuitsim.netlist.subckt import flatten, read_subckts
 from circuitsim.units import Dim, compatible, describe, explain_mismatch, spice_value, unit_info
@@ -132,18 +133,6 @@ class Netlist:
             (k, repr(v)) for k, v in c.structure.items())) for c in self.components]
         desc.append(sorted((p.name, p.text) for p in self.probes.values()))
         return hashlib.sha256(json.dumps(desc, default=str).encode()).hexdigest()[:24]
-
-
-def _loc(path: str, node: Any, key: Any = None, index: int | None = None) -> SourceLoc:
-    """Line (1-based) of a ruamel node, of one of its keys, or of one of its items."""
-    try:
-        if key is not None:
-            return SourceLoc(path, node.lc.key(key)[0] + 1)
-        if index is not None:
-            return SourceLoc(path, node.lc.item(index)[0] + 1)
-        return SourceLoc(path, node.lc.line + 1)
-    except (AttributeError, KeyError, TypeError, IndexError):
-        return SourceLoc(path, 0)
 
 
 def _near(name: str, options) -> str:

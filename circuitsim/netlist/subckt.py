@@ -30,6 +30,7 @@ from typing import Any
 from circuitsim.component import COMPONENTS, DOMAINS
 from circuitsim.errors import NetlistError, SourceLoc
 from circuitsim.netlist import expr as ex
+from circuitsim.netlist.lines import yaml_line as _line
 
 REFERENCES = frozenset(r for d in DOMAINS.values() for r in d.references)
 #: Instances inside instances: deeper than this is surely a mistake (and a recursion guard).
@@ -57,17 +58,6 @@ class Subckt:
     comps: tuple[tuple[Mapping, SourceLoc, str], ...]
     probes: Mapping[str, tuple[Any, SourceLoc]]
     loc: SourceLoc
-
-
-def _line(path: str, node: Any, key: Any = None, index: int | None = None) -> SourceLoc:
-    try:
-        if key is not None:
-            return SourceLoc(path, node.lc.key(key)[0] + 1)
-        if index is not None:
-            return SourceLoc(path, node.lc.item(index)[0] + 1)
-        return SourceLoc(path, node.lc.line + 1)
-    except (AttributeError, KeyError, TypeError, IndexError):
-        return SourceLoc(path, 0)
 
 
 def read_subckts(doc: Mapping, path: str) -> dict[str, Subckt]:
