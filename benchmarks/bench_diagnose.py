@@ -24,6 +24,17 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 
 
+_T0 = [0.0]
+
+
+def _stamp(message: str) -> None:
+    """A stage's log line with the time since the diagnosis started [s]."""
+    now = time.perf_counter()
+    if not _T0[0]:
+        _T0[0] = now
+    print(f"  {now - _T0[0]:7.2f} s  {message}")
+
+
 def main() -> int:
     os.environ.setdefault("CIRCUITSIM_CACHE", tempfile.mkdtemp(prefix="bench-cache-"))
     warnings.simplefilter("ignore")
@@ -50,7 +61,7 @@ def main() -> int:
     one_run = time.perf_counter() - t0
     t0 = time.perf_counter()
     d = diagnose(net, Record(t, cols, "bench"), probes=["i_total", "speed"],
-                 progress=lambda m: print(m) if "SSE" in m or "accept" in m else None)
+                 progress=_stamp)
     total = time.perf_counter() - t0
     print(d.summary())
     for k, v in d.timings.items():

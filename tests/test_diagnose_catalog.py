@@ -34,7 +34,10 @@ MOTORS = {
 
 def _candidate(net, effect, target, order, probes):
     orders = {"rotor": [order]} if order else None
-    return next(c for c in effects.candidates(net, orders, probes)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        units = cs.compile(net).meta["units"]
+    return next(c for c in effects.candidates(net, orders, {p: units[p] for p in probes})
                 if c.effect == effect and c.target == target and
                 (order is None or c.fixed.get("order") == order))
 
@@ -69,6 +72,7 @@ DC = [
     ("unbalance", "rotor", 1, [2e-3, 0.0], 0.1),
     ("sensor-gain", "speed", None, [0.03], 0.1),
     ("sensor-offset", "i", None, [0.01], 0.1),
+    ("sensor-delay", "i", None, [2e-4], 0.1),
 ]
 KIM = [
     ("series-resistance", "La", None, [0.05], 0.1),
@@ -77,6 +81,7 @@ KIM = [
     ("cogging", "rotor", 6, [2e-3, 0.0], 0.1),
     ("emf-harmonic", "M", 16, [5e-4, 0.0], 0.1),
     ("sensor-offset", "i_total", None, [0.05], 0.1),
+    ("sensor-delay", "i_total", None, [1e-4], 0.1),
 ]
 # a cause the record can carry under another name: (effect, target) pairs it may report
 # (in the Kim circuit every element but the varistor is in one series loop: a resistance in

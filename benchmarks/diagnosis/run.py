@@ -180,7 +180,8 @@ def _param_errors(acc: dict, expected: dict, final: dict | None = None) -> dict[
               for k, v in acc.get("parameters", {}).items()}
 
     # the catalog's parameter suffixes for the truth's physical names
-    aliases = {"gain": "g", "offset": "o", "T_coulomb_Nm": "c", "T_breakaway_Nm": "s"}
+    aliases = {"gain": "g", "offset": "o", "delay": "tau", "T_coulomb_Nm": "c",
+               "T_breakaway_Nm": "s"}
 
     def find(suffix):
         for name in (suffix, aliases.get(suffix)):

@@ -22,7 +22,7 @@ from circuitsim.netlist.load import Netlist, RawNetlist
 CATALOG_IDS = ("series-resistance", "source-resistance", "brush-drop", "coulomb-friction",
                "stribeck-friction", "viscous-friction", "cogging", "unbalance", "emf-harmonic",
                "inductor-saturation", "resistance-drift", "force-offset", "sensor-gain",
-               "sensor-offset")
+               "sensor-offset", "sensor-delay")
 
 
 @dataclass(frozen=True)
@@ -119,10 +119,11 @@ def _mechanical_nodes(net: Netlist) -> list[tuple[str, str]]:
 
 
 def candidates(net: Netlist, orders: Mapping[str, list[int]] | None = None,
-               probes: Sequence[str] = ()) -> list[Candidate]:
+               probes: Sequence[str] | Mapping[str, str] = ()) -> list[Candidate]:
     """Every candidate of the catalog for this netlist. ``orders``: harmonic orders per shaft
     node found in the residual (for ``cogging`` and ``emf-harmonic``); ``probes``: the
-    measured probes (for the sensor effects)."""
+    measured probes (for the sensor effects), or a mapping from each to its unit (a sensor
+    delay is built from a voltage, so it needs the probe's unit)."""
     orders = orders or {}
     return [*_electrical(net), *_converter_effects(net, orders), *_mechanical(net, orders),
             *_component_laws(net), *_sensors(probes)]
@@ -246,8 +247,9 @@ def _component_laws(net: Netlist) -> list[Candidate]:
     return out
 
 
-def _sensors(probes: Sequence[str]) -> list[Candidate]:
+def _sensors(probes: Sequence[str] | Mapping[str, str]) -> list[Candidate]:
     out: list[Candidate] = []
+    units = probes if isinstance(probes, Mapping) else {}
     for name in probes:
         g, o = _pname("sensor-gain", name, "g"), _pname("sensor-offset", name, "o")
         out.append(Candidate("sensor-gain", name, {g: (0.0, -0.5, 0.5)}, {},
@@ -258,7 +260,40 @@ def _sensors(probes: Sequence[str]) -> list[Candidate]:
                              f"an offset o of the sensor of {name}: reads x + o",
                              lambda r, n=name, o=o: _probe_patch(r, n, o, "({x}) + {v}"),
                              steps={o: 1e-3}))
+        if name not in units:
+            continue
+        d = _pname("sensor-delay", name, "tau")
+        out.append(Candidate("sensor-delay", name, {d: (DELAY_NULL, DELAY_NULL, 1.0)}, {},
+                             f"a delay tau of the sensor of {name} (its filter or sampling "
+                             f"lag): reads x(t - tau)",
+                             lambda r, n=name, d=d, u=units[name]: _probe_delay(r, n, d, u),
+                             steps={d: 1e-5}))
     return out
+
+
+#: [s] the sensor delay's null: a Padé stage needs a capacitance > 0, and a picosecond is
+#: invisible at any sampling rate a record has (it shifts a 100 A/ms edge by 0.1 µA). The
+#: stage is then stiff, but linear and well damped: the implicit integrator does not notice.
+DELAY_NULL = 1e-12
+
+
+def _probe_delay(raw: RawNetlist, probe: str, tau: str, unit: str) -> None:
+    """Read a probe through a delay of ``tau`` [s]: the first-order Padé all-pass
+    (1 - s tau/2)/(1 + s tau/2) = 2/(1 + s tau/2) - 1, built from a 1 ohm, tau/2 farad
+    low-pass driven by the probe's own expression. Its gain is exactly one at every
+    frequency and its phase -2 atan(w tau/2), a delay's to within (w tau)^3/12 rad. The
+    low-pass starts at 0: a record that starts from rest reads exactly, one that starts
+    elsewhere shows a start-up blip lasting ~tau."""
+    text, loc = raw.probes[probe]
+    node_in, node_out = f"{tau}_in", f"{tau}_out"
+    # the probe's value as a voltage: one volt per unit of the probe
+    volts = f"({text})*1[V]" + (f"/1[{unit}]" if unit not in ("", "1") else "")
+    _add(raw, {"name": f"SDV_{tau}", "type": "BV", "p": node_in, "n": "gnd", "expr": volts})
+    _add(raw, {"name": f"SDR_{tau}", "type": "R", "p": node_in, "n": node_out, "R": 1.0})
+    _add(raw, {"name": f"SDC_{tau}", "type": "C", "p": node_out, "n": "gnd",
+               "C": f"{tau}/2"})
+    back = "" if unit in ("", "1") else f"*1[{unit}]"
+    raw.probes[probe] = (f"2*{node_out}.v/1[V]{back} - ({text})", loc)
 
 
 def _probe_patch(raw: RawNetlist, probe: str, param: str, template: str) -> None:

@@ -59,6 +59,12 @@ CALIBRATION_TARGET = 0.1
 # penalty per residual when a simulation fails inside the fit (a normalised residual of a
 # sensible model is O(1)): the trust region shrinks away from the failing parameters
 FAILED_PENALTY = 1e2
+#: Relative change of cost and parameters that ends the slow-feature stage of a record fit:
+#: that stage only brings the waveform stage into its basin, a few digits are enough there.
+SLOW_STAGE_TOL = 1e-3
+#: Runs a record fit keeps for revisited points: the Jacobian's neighbours of the last point
+#: and the point itself (a few parameters, central differences).
+MEMO_RUNS = 16
 # smoothing windows of stage 1 are at least this many ripple periods long
 WINDOW_PERIODS = 10
 
@@ -294,7 +300,8 @@ def _calibrate(space: _Space, fun: Callable[[np.ndarray], np.ndarray], z0: np.nd
 
 def _least_squares(fun: Callable[[np.ndarray], np.ndarray], space: _Space, z0: np.ndarray,
                    diff_step: float | np.ndarray, max_nfev: int,
-                   many: Callable[[list[np.ndarray]], list[np.ndarray]] | None = None):
+                   many: Callable[[list[np.ndarray]], list[np.ndarray]] | None = None,
+                   tol: float = 1e-8):
     """scipy's trust-region least squares in z, with forward differences of *absolute* step
     ``diff_step`` in z (a relative change of a log-scaled parameter).
 
@@ -333,7 +340,7 @@ def _least_squares(fun: Callable[[np.ndarray], np.ndarray], space: _Space, z0: n
     margin = np.minimum(1e-2, 1e-2 * (space.hi - space.lo))
     z0 = np.clip(z0, space.lo + margin, space.hi - margin)
     return least_squares(f, z0, jac=jac, bounds=(space.lo, space.hi), method="trf",
-                         x_scale=1.0, xtol=1e-8, ftol=1e-8, gtol=1e-10, max_nfev=max_nfev)
+                         x_scale=1.0, xtol=tol, ftol=tol, gtol=1e-10, max_nfev=max_nfev)
 
 
 def _difference_steps(fun: Callable[[np.ndarray], np.ndarray], z: np.ndarray, r0: np.ndarray,
@@ -423,6 +430,16 @@ def _jacobian(fun: Callable[[np.ndarray], np.ndarray], z: np.ndarray,
     if not cols:
         return np.zeros((fun(z).size, 0)), []
     return np.column_stack(cols), bad
+
+
+def _central_points(z: np.ndarray, h: np.ndarray, space: _Space) -> list[np.ndarray]:
+    """The points ``_jacobian`` evaluates where both sides are inside the box."""
+    out = []
+    for k in range(z.size):
+        if space.hi[k] - z[k] >= h[k] and z[k] - space.lo[k] >= h[k]:
+            e = np.eye(z.size)[k] * h[k]
+            out += [z + e, z - e]
+    return out
 
 
 def _unevaluated(unc: _Uncertainty, bad: list[int], space: _Space) -> _Uncertainty:
@@ -809,7 +826,8 @@ def fit_record(model, record: Record, free: Sequence[str], *,
                bounds: Mapping[str, tuple[float, float]] | None = None,
                probes: Sequence[str] | None = None, staged: bool = True,
                rtol: float = 1e-8, atol: float | None = None,
-               max_nfev: int = 100, weights: Mapping[str, float] | None = None) -> FitResult:
+               max_nfev: int = 100, weights: Mapping[str, float] | None = None,
+               tol: float = 1e-8) -> FitResult:
     """Fit ``free`` parameters of a compiled model to a measured record (output error).
 
     The model is simulated from rest on the record's time grid and compared with each probe
@@ -834,6 +852,7 @@ def fit_record(model, record: Record, free: Sequence[str], *,
     max_nfev : largest number of simulations per stage (Jacobian evaluations not counted).
     weights : per probe, the scale its residual is divided by [probe unit] (its noise level,
         when known); default: the probe's spread.
+    tol : relative change of the cost and of the parameters that ends a stage [-].
 
     Returns
     -------
@@ -856,8 +875,8 @@ def fit_record(model, record: Record, free: Sequence[str], *,
     nfev = 0
     ok, msg = True, "nothing free: the residuals of the start values"
     for name, fun in prob.plan(staged) if free else []:
-        sol = _least_squares(fun, prob.space, z, step, max_nfev,
-                             prob.many if fun == prob.full else None)
+        stage_tol = tol if fun == prob.full else max(tol, SLOW_STAGE_TOL)
+        sol = _least_squares(fun, prob.space, z, step, max_nfev, prob.batched(fun), stage_tol)
         z = sol.x
         nfev += int(sol.nfev)
         ok, msg = bool(sol.status > 0), str(sol.message)
@@ -883,6 +902,7 @@ class _RecordProblem:
         self.atol = atol if atol is not None else model.netlist.analysis.atol
         self.failures = 0
         self.W = smoothing_windows(self.t, self.data)
+        self.memo: dict[bytes, Any] = {}
         self.slow_data = [slow_features(self.W, x) for x in self.data]
 
     def overrides(self, z: np.ndarray) -> dict[str, float]:
@@ -890,38 +910,59 @@ class _RecordProblem:
                 **dict(zip(self.space.names, self.space.theta(z).tolist(), strict=True))}
 
     def simulate(self, z: np.ndarray, rtol: float | None = None):
+        key = z.tobytes()
+        if rtol is None and key in self.memo:
+            return self.memo[key]
         try:
             res = self.model.simulate(stop=float(self.t[-1]), params=self.overrides(z),
                                       t_eval=self.t, rtol=rtol or self.rtol, atol=self.atol)
         except ParameterError:
             return None
         if not res.success or res.t.size != self.t.size:
-            return None
+            res = None
+        if rtol is None:
+            self.remember(key, res)
         return res
+
+    def remember(self, key: bytes, res) -> None:
+        """Keep a run for the points the least squares revisits (its accepted point is the
+        next Jacobian's base; the result re-reads the optimum), a few at a time: a run of a
+        long record is large."""
+        self.memo[key] = res
+        while len(self.memo) > MEMO_RUNS:
+            self.memo.pop(next(iter(self.memo)))
+
+    def prefetch(self, zs: Sequence[np.ndarray], again: bool = False) -> None:
+        """Simulate the points not yet known (``again``: all of them) in one batched
+        integration: one step sequence for all, so differences between them carry no
+        integration noise of their own."""
+        from circuitsim.solve.batch import simulate_batch
+
+        todo = list({z.tobytes(): z for z in zs if again or z.tobytes() not in self.memo
+                     }.values())
+        if len(todo) < 2:
+            return
+        try:
+            runs = simulate_batch(self.model, [self.overrides(z) for z in todo],
+                                  stop=float(self.t[-1]), t_eval=self.t, rtol=self.rtol,
+                                  atol=self.atol, nearby=True)
+        except ParameterError:
+            return
+        for z, res in zip(todo, runs, strict=True):
+            ok = res.success and res.t.size == self.t.size
+            self.remember(z.tobytes(), res if ok else None)
+
+    def batched(self, fun: Callable[[np.ndarray], np.ndarray]
+                ) -> Callable[[list[np.ndarray]], list[np.ndarray]]:
+        """``fun`` at several points, their runs made in one batched integration."""
+        def many(zs: list[np.ndarray]) -> list[np.ndarray]:
+            self.prefetch(zs, again=True)
+            return [fun(z) for z in zs]
+        return many
 
     def waveforms(self, z: np.ndarray) -> list[np.ndarray] | None:
         res = self.simulate(z)
         return None if res is None else [res[p] for p in self.names]
-
-    def many(self, zs: list[np.ndarray]) -> list[np.ndarray]:
-        """``full`` at several points from one batched integration."""
-        from circuitsim.solve.batch import simulate_batch
-
-        try:
-            runs = simulate_batch(self.model, [self.overrides(z) for z in zs],
-                                  stop=float(self.t[-1]), t_eval=self.t, rtol=self.rtol,
-                                  atol=self.atol)
-        except ParameterError:
-            return [self.full(z) for z in zs]
-        out = []
-        for res in runs:
-            if not res.success or res.t.size != self.t.size:
-                self.failures += 1
-                out.append(np.full(self.t.size * len(self.names), FAILED_PENALTY))
-                continue
-            out.append(np.concatenate([(res[p] - x) / s for p, x, s in
-                                       zip(self.names, self.data, self.spread, strict=True)]))
-        return out
 
     def full(self, z: np.ndarray) -> np.ndarray:
         ys = self.waveforms(z)
@@ -946,7 +987,9 @@ class _RecordProblem:
         noise = float(np.linalg.norm(np.concatenate(
             [(alt[p] - x) / s for p, x, s in zip(self.names, self.data, self.spread,
                                                  strict=True)]) - r0)) if alt is not None else 0.0
-        return _difference_steps(self.full, z, r0, self.space, noise)
+        self.prefetch([z, *(z + h * np.eye(z.size)[k] for k in range(z.size)
+                            if (h := _inside(self.space, z, k, 1e-3)) != 0.0)], again=True)
+        return _difference_steps(self.full, z, self.full(z), self.space, noise)
 
     def plan(self, staged: bool) -> list[tuple[str, Any]]:
         # without a shaft angle there is no ripple to slide out of phase: the waveform's own
@@ -962,6 +1005,7 @@ class _RecordProblem:
             raise SolverError("the simulation fails at the fitted values; bound the "
                               "parameters (bounds=...) or start closer")
         n = len(self.space.names)
+        self.prefetch([z, *_central_points(z, 10 * step, self.space)], again=True)
         J, bad = _jacobian(self.full, z, 10 * step, self.space) if n else \
             (np.zeros((r.size, 0)), [])
         groups = [np.arange(k * self.t.size, (k + 1) * self.t.size)

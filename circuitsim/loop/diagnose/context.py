@@ -99,16 +99,16 @@ def simulate(setup: Setup, model, params: Mapping[str, float], rtol: float | Non
 
 
 def simulate_many(setup: Setup, model, params_list: Sequence[Mapping[str, float]],
-                  rtol: float | None = None) -> list[Any]:
+                  rtol: float | None = None, nearby: bool = True) -> list[Any]:
     """Several parameter sets of one model in one batched integration; None for a member
-    that fails."""
+    that fails. ``nearby``: small steps from one point (see ``simulate_batch``)."""
     from circuitsim.solve.batch import simulate_batch
 
     rec = setup.record
     try:
         runs = simulate_batch(model, [dict(q) for q in params_list], stop=float(rec.t[-1]),
                               t_eval=rec.t, rtol=rtol or setup.rtol,
-                              atol=model.netlist.analysis.atol)
+                              atol=model.netlist.analysis.atol, nearby=nearby)
     except (CircuitsimError, ArithmeticError, ValueError):
         return [simulate(setup, model, q, rtol) for q in params_list]
     return [r if r.success and r.t.size == rec.t.size else None for r in runs]
@@ -118,6 +118,12 @@ def weighted(setup: Setup, series: Mapping[str, Any]) -> np.ndarray:
     """Probe series divided by each probe's noise, concatenated."""
     return np.concatenate([np.asarray(series[p], float) / setup.weights[p]
                            for p in setup.probes])
+
+
+#: The relative change of the weighted SSE that ends a refit. The SSE is about the number of
+#: samples (tens of thousands), so 1e-6 of it is far below the BIC margin a decision turns
+#: on; iterating further only buys digits no decision reads.
+FIT_TOL = 1e-6
 
 
 def refit(setup: Setup, model, free: Sequence[str], params: Mapping[str, float],
@@ -132,7 +138,7 @@ def refit(setup: Setup, model, free: Sequence[str], params: Mapping[str, float],
         return fit_record(model, setup.record, list(free), params=dict(params),
                           bounds=b or None, probes=list(setup.probes), rtol=setup.rtol,
                           staged=staged, max_nfev=nfev,
-                          weights=dict(setup.weights))
+                          weights=dict(setup.weights), tol=FIT_TOL)
 
 
 def weighted_sse(setup: Setup, fit) -> float:

@@ -31,6 +31,7 @@ from circuitsim.loop.diagnose.noise import (
     transient_excess,
     whiteners_of,
 )
+from circuitsim.loop.diagnose.screen import on_waveform
 
 BIC_MARGIN = 10.0  # "very strong" evidence on the Kass-Raftery scale
 STRUCTURE_SHARE = 0.3  # share of the residual's significant structure an effect must explain
@@ -65,10 +66,11 @@ def refit_trial(setup: Setup, state: ModelState, candidates: Sequence[Any],
     """Refit the candidates (with everything free so far) from the screen's starts; a refit
     that ends worse than it began is retried with the new parameters alone first (the
     angle-locked phase of a harmonic finds its basin), then all together."""
-    # the candidate is scored with only its own parameters and the declared ones free: the
-    # earlier effects' parameters stay where the accepted model put them, so a candidate is
-    # never credited with a better fit of what is already there
-    free = [*setup.declared, *(n for c in candidates for n in c.free)]
+    # the candidate is refitted with everything free so far: an effect accepted earlier may
+    # have absorbed part of this one (a series resistance standing in for a friction too), and
+    # only with its parameters free can the two share the work. The accepted model was fitted
+    # to convergence with those parameters free, so what they gain here is the candidate's.
+    free = [*state.free, *(n for c in candidates for n in c.free)]
     params = {**state.params, **starts}
     bounds = {**state.bounds, **{n: (lo, hi) for c in candidates
                                  for n, (_, lo, hi) in c.free.items()}}
@@ -78,7 +80,7 @@ def refit_trial(setup: Setup, state: ModelState, candidates: Sequence[Any],
     # an effect that changes the speed slides an angle-locked ripple out of phase: its
     # waveform cost has false minima, so slow features come first (as in the declared fit)
     staged = "rotational" in model.meta.get("integrals", {}).values() and \
-        not any("order" in c.fixed for c in candidates)
+        not any(on_waveform(c) for c in candidates)
     try:
         fit = refit(setup, model, free, params, bounds, staged=staged)
     except CircuitsimError:

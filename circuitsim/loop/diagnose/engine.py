@@ -45,7 +45,13 @@ from circuitsim.loop.diagnose.netlist_out import _with_values
 from circuitsim.loop.diagnose.noise import delta_bic, whiteners_of
 from circuitsim.loop.diagnose.residual import _orders, analyse, noise_sigma
 from circuitsim.loop.diagnose.result import Accepted, Diagnosis, DiagnosisError
-from circuitsim.loop.diagnose.screen import Screen, projections, propose, screen
+from circuitsim.loop.diagnose.screen import (
+    Screen,
+    on_waveform,
+    projections,
+    propose,
+    screen_many,
+)
 
 SCREEN_TOP = 3  # candidates refitted with full simulation per round
 MAX_COMBINATIONS = 10  # joint swaps tried after an acceptance
@@ -66,12 +72,14 @@ def diagnose(netlist, record, free: Sequence[str] = (), *, probes: Sequence[str]
     params : overrides [SI]; for a declared free parameter, its start value.
     progress : called with a line of text at each step.
     """
-    clock = {"start": time.perf_counter()}
+    start = time.perf_counter()
     setup, state0 = fit_declared(netlist, record, free, probes, params, rtol, max_effects,
                                  progress)
-    clock["fit_declared"] = time.perf_counter() - clock["start"]
+    clock = {"fit_declared": time.perf_counter() - start}
     state, log = search(setup, state0, screen_top, clock)
-    clock["total"] = time.perf_counter() - clock["start"]
+    # what the search spent outside screening and refits: the backward step and swaps
+    clock["revise"] = time.perf_counter() - start - sum(clock.values())
+    clock["total"] = time.perf_counter() - start
     return report(setup, state0, state, log, clock)
 
 
@@ -150,13 +158,11 @@ def _screen_round(setup: Setup, state: ModelState, log: dict[str, Any]) -> list[
     noise = {id(fn): (0.0 if alt is None else
                       float(np.linalg.norm(fn(alt) - fn(state.fit.sim)))) for fn in (slow, wave)}
     analysis = analyse(state.model, setup.record, state.fit, setup.probes)
-    out = []
-    for prop in _distinct(state, propose(setup, state, _orders(analysis), log["tried"]), log):
-        setup.log(f"screening {prop.candidate.key}")
-        fn = wave if "order" in prop.candidate.fixed else slow
-        s = screen(setup, state, prop, fn, noise[id(fn)])
-        if s is not None and s.share > 0:
-            out.append(s)
+    props = _distinct(state, propose(setup, state, _orders(analysis), log["tried"]), log)
+    out = [s for s in screen_many(setup, state, props,
+                                  lambda p: wave if on_waveform(p.candidate) else slow,
+                                  lambda fn: noise[id(fn)])
+           if s is not None and s.share > 0]
     # one whose gain cannot pay the BIC margin as a white-noise likelihood ratio in the space
     # it was measured in will not pass after a refit either; the rest are ranked by the share
     # of their own space's residual they explain (a speed effect seen in slow features and a
@@ -167,6 +173,8 @@ def _screen_round(setup: Setup, state: ModelState, log: dict[str, Any]) -> list[
 
 
 SERIES = ("series-resistance", "source-resistance")
+#: Relative difference of two trials' weighted SSE below which they are the same fit.
+SAME_FIT = 1e-7
 
 
 def _distinct(state: ModelState, proposals: list, log: dict[str, Any]) -> list:
@@ -225,7 +233,8 @@ def _refit_round(setup: Setup, state: ModelState, screens: list[Screen],
     for s in screens:
         c = s.proposal.candidate
         setup.log(f"refitting {c.key}")
-        trial = refit_trial(setup, state, [c], s.start, s.model)
+        trial = refit_trial(setup, state, [c], s.start,
+                            s.model or compile_raw(c.apply(state.raw)))
         if trial is None:
             log["rejected"].append({"effect": c.effect, "target": c.target,
                                     "reason": "refit failed"})
@@ -249,7 +258,10 @@ def _refit_round(setup: Setup, state: ModelState, screens: list[Screen],
         return None
     passed.sort(key=lambda t: t[0].delta_bic)
     best = passed[0]
-    log["alternatives"] = [t for t, _ in passed[1:3] if len(t.candidates) == 1]
+    # an alternative that fits exactly as well is the same circuit under another name (a
+    # source resistance and a resistance in series with it): swapping it in changes nothing
+    log["alternatives"] = [t for t, _ in passed[1:3] if len(t.candidates) == 1 and
+                           abs(t.sse_after - best[0].sse_after) > SAME_FIT * best[0].sse_after]
     for t, _ in trials:
         if t is not best[0] and t.delta_bic - best[0].delta_bic < BIC_MARGIN and t.passed:
             log["indistinct"].append(
@@ -283,8 +295,11 @@ def _accept(setup: Setup, state: ModelState, winner: tuple[Trial, bool],
     bounds = {**state.bounds, **{n: (lo, hi) for c in trial.candidates
                                  for n, (_, lo, hi) in c.free.items()}}
     free = [*state.free, *(n for c in trial.candidates for n in c.free)]
-    # the short refit decided; polish the accepted model with a longer fit from there
-    fit = refit(setup, model, free, dict(trial.fit.params), bounds, nfev=40)
+    # the short refit decided; polish the accepted model with a longer fit from there when
+    # it freed fewer parameters than the model now has (an earlier effect's stayed fixed)
+    trial_free = {*setup.declared, *(n for c in trial.candidates for n in c.free)}
+    fit = trial.fit if set(free) <= trial_free and trial.fit.success else \
+        refit(setup, model, free, dict(trial.fit.params), bounds, nfev=40)
     chosen = [*state.chosen, *(Choice(c, correction) for c in trial.candidates)]
     setup.log(f"accepted {trial.key}" + (" (a correction of a declared term)"
                                          if correction else "") + f": error {fit.error:.4g}")

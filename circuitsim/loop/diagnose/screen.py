@@ -14,6 +14,7 @@ the waveform, where the phase tells a torque (cogging) from a voltage (EMF harmo
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
@@ -62,7 +63,9 @@ def propose(setup: Setup, state: ModelState, orders: Mapping[str, list[int]],
     declared = effects.declared_orders(state.raw)
     chosen = {c.candidate.key for c in state.chosen}
     out = []
-    for c in effects.candidates(build(state.raw), orders, setup.probes):
+    units = state.model.meta.get("units", {})
+    probes = {p: units[p] for p in setup.probes if p in units}
+    for c in effects.candidates(build(state.raw), orders, probes or setup.probes):
         if c.key in tried or c.key in chosen:
             continue
         order = c.fixed.get("order")
@@ -73,6 +76,13 @@ def propose(setup: Setup, state: ModelState, orders: Mapping[str, list[int]],
 
 
 Projector = Callable[[Any], np.ndarray]
+
+
+def on_waveform(candidate) -> bool:
+    """Whether a candidate is screened on the waveform: a harmonic (its phase tells a torque
+    from a voltage) or a sensor law (it leaves the speed, and so every angle-locked phase,
+    alone); the rest, on the slow features."""
+    return "order" in candidate.fixed or candidate.effect in SENSOR_LAWS
 
 
 def projections(setup: Setup, model) -> tuple[Projector, Projector, bool]:
@@ -115,27 +125,125 @@ def screen(setup: Setup, state: ModelState, proposal: Proposal, project: Project
     steps = {n: cand.steps.get(n, 1e-3) for n in cand.free}
     runs = simulate_many(setup, model, [base, *({**base, n: base[n] + h}
                                                  for n, h in steps.items())])
-    y0 = runs[0]
-    if y0 is None:
+    if runs[0] is None:
         return None
+    s = _from_runs(setup, proposal, model, runs[0], dict(zip(steps, runs[1:], strict=True)),
+                   project, noise, base)
+    return None if s is None else dataclasses.replace(s, model=model)
+
+
+def screen_many(setup: Setup, state: ModelState, proposals: list[Proposal],
+                projector: Callable[[Proposal], Projector], noise: Callable[[Projector], float]
+                ) -> list[Screen]:
+    """Every proposal's score test, the linearisable ones from one batched run of a model
+    carrying all their patches at once.
+
+    At their null values the patches are inert, so the joint model's base run is the current
+    model's and the step of one candidate's parameter is that candidate's own sensitivity:
+    one compile and one integration of 1 + (their free parameters) members replace one of
+    each per candidate. A candidate whose step leaves the linear range is re-stepped alone in
+    the joint model; when the joint model cannot be built or run, each is screened alone.
+    """
+    joint = [p for p in proposals if p.candidate.effect not in SENSOR_LAWS
+             and not p.candidate.grid]
+    rest = [p for p in proposals if p not in joint]
+    runs, model, members = _joint_runs(setup, state, joint) if len(joint) > 1 else (None,) * 3
+    if runs is None:
+        rest, joint = proposals, []
+    out = []
+    for prop in rest:
+        setup.log(f"screening {prop.candidate.key}")
+        out.append(screen(setup, state, prop, projector(prop), noise(projector(prop))))
+    accepted = _accepted_steps(state)
+    for prop in joint:
+        setup.log(f"screening {prop.candidate.key}")
+        fn = projector(prop)
+        mine = {n: runs[members[n]] for n in prop.candidate.free}
+        retune = _columns(runs, members, accepted, fn)
+        out.append(_from_runs(setup, prop, model, runs[0], mine, fn, noise(fn),
+                              _null_params(state, joint), retune))
+    return out
+
+
+def _accepted_steps(state: ModelState) -> dict[str, float]:
+    """The parameters of the effects accepted so far, with their screening steps."""
+    return {n: c.candidate.steps.get(n, 1e-3) for c in state.chosen
+            for n in c.candidate.free if n in state.free}
+
+
+def _columns(runs: list, members: Mapping[str, int], steps: Mapping[str, float],
+             project: Projector) -> np.ndarray | None:
+    """Sensitivities of the accepted effects' parameters (None when any run failed)."""
+    cols = []
+    for n, h in steps.items():
+        y = runs[members[n]] if n in members else None
+        if y is None:
+            return None
+        cols.append((project(y) - project(runs[0])) / h)
+    return np.column_stack(cols) if cols else None
+
+
+def _null_params(state: ModelState, proposals: list[Proposal]) -> dict[str, float]:
+    return {**state.params, **{k: v[0] for p in proposals
+                               for k, v in p.candidate.free.items()}}
+
+
+def _joint_runs(setup: Setup, state: ModelState, proposals: list[Proposal]
+                ) -> tuple[list | None, Any, dict[str, int]]:
+    """The joint model's base run and one step of each free parameter, batched: (runs, model,
+    index of each parameter's run), or Nones when it cannot be built or its base fails."""
+    from circuitsim.errors import CircuitsimError
+
+    raw = state.raw
+    try:
+        for p in proposals:
+            raw = p.candidate.apply(raw)
+        model = compile_raw(raw)
+    except (CircuitsimError, KeyError, ValueError):
+        return None, None, {}
+    base = _null_params(state, proposals)
+    sets, members = [base], {}
+    steps = {n: h for p in proposals for n in p.candidate.free
+             for h in [p.candidate.steps.get(n, 1e-3)]}
+    for n, h in {**steps, **_accepted_steps(state)}.items():
+        members[n] = len(sets)
+        sets.append({**base, n: base[n] + h})
+    runs = simulate_many(setup, model, sets)
+    return (None, None, {}) if runs[0] is None else (runs, model, members)
+
+
+def _from_runs(setup: Setup, proposal: Proposal, model, y0, stepped: Mapping[str, Any],
+               project: Projector, noise: float, base: Mapping[str, float],
+               retune: np.ndarray | None = None) -> Screen | None:
+    """The score test from a base run and one stepped run per free parameter. ``retune``:
+    sensitivities of the effects accepted before, which may move with the candidate; its
+    gain is then what it adds to them (their own projection is the model's optimum, ~0)."""
+    cand = proposal.candidate
     e0 = project(setup.record) - project(y0)
     norm0 = float(e0 @ e0)
     if norm0 <= 0.0:
         return None
     cols = []
-    for (name, h), y in zip(steps.items(), runs[1:], strict=True):
-        col = _first_column(y, y0, h, project, noise)
+    for name, y in stepped.items():
+        h = cand.steps.get(name, 1e-3)
+        col = _first_column(y, y0, h, project, noise, e0)
         if col is None:  # out of the linear range or below the noise: adapt the step alone
-            col = _sensitivity(setup, model, base, name, h, y0, project, noise)
+            col = _sensitivity(setup, model, base, name, h, y0, project, noise, e0)
         if col is None:
             return None
         cols.append(col)
     S = np.column_stack(cols)
+    k = S.shape[1]
+    if retune is not None:
+        S = np.column_stack([S, retune])
     coef, *_ = np.linalg.lstsq(S, e0, rcond=None)
     gain = float(e0 @ (S @ coef))
+    if retune is not None:
+        alone, *_ = np.linalg.lstsq(retune, e0, rcond=None)
+        gain -= float(e0 @ (retune @ alone))
     start = {n: _inside(cand.free[n], base[n] + float(c))
-             for n, c in zip(cand.free, coef, strict=True)}
-    return Screen(proposal, gain / norm0, start, model, e0.size)
+             for n, c in zip(cand.free, coef[:k], strict=True)}
+    return Screen(proposal, gain / norm0, start, None, e0.size)
 
 
 def _inside(spec: tuple[float, float, float], value: float) -> float:
@@ -143,19 +251,27 @@ def _inside(spec: tuple[float, float, float], value: float) -> float:
     return min(max(value, lo), hi)
 
 
-def _first_column(y, y0, h: float, project: Projector, noise: float) -> np.ndarray | None:
+def _linear_limit(col: np.ndarray, e0: np.ndarray) -> float:
+    """The largest change a step may make and still count as a slope: 0.3 noise units RMS,
+    or the residual's own size when that is larger (the slope over the range the fit will
+    move through is what the score test needs, a secant there included)."""
+    return max(0.3 * math.sqrt(col.size), float(np.linalg.norm(e0)))
+
+
+def _first_column(y, y0, h: float, project: Projector, noise: float, e0: np.ndarray
+                  ) -> np.ndarray | None:
     """The batched first difference, when its size is in the linear range above the noise."""
     if y is None:
         return None
     col = (project(y) - project(y0)) / h
     size = float(np.linalg.norm(col * h))
-    if max(1e-7 * math.sqrt(col.size), 10 * noise) <= size <= 0.3 * math.sqrt(col.size):
+    if max(1e-7 * math.sqrt(col.size), 10 * noise) <= size <= _linear_limit(col, e0):
         return col
     return None
 
 
 def _sensitivity(setup: Setup, model, base: Mapping[str, float], name: str, h: float, y0,
-                 project: Projector, noise: float) -> np.ndarray | None:
+                 project: Projector, noise: float, e0: np.ndarray) -> np.ndarray | None:
     """d(projection)/d(parameter) by a step sized to stay above the solver's noise and
     below the non-linear range."""
     size = 0.0
@@ -165,9 +281,11 @@ def _sensitivity(setup: Setup, model, base: Mapping[str, float], name: str, h: f
             return None
         col = (project(y) - project(y0)) / h
         size = float(np.linalg.norm(col * h))
+        if size == 0.0:
+            return None  # acts on nothing measured (a resistor in series with no current)
         if size < max(1e-7 * math.sqrt(col.size), 10 * noise):
             h *= 100  # invisible above the solver's noise: a bigger step
-        elif size > 0.3 * math.sqrt(col.size):
+        elif size > _linear_limit(col, e0):
             h /= 30  # far from linear: a smaller one
         else:
             return col
@@ -183,9 +301,10 @@ def _grid(setup: Setup, proposal: Proposal, model, base: Mapping[str, float], y0
     key = f"{cand.target}.i"
     scale = max(float(np.max(np.abs(y0[key]))), 1e-9) if key in y0.names else 1.0
     best: Screen | None = None
-    for g in cand.grid:
-        trial = {**base, first: _inside(cand.free[first], g * scale)}
-        y = simulate(setup, model, trial)
+    trials = [{**base, first: _inside(cand.free[first], g * scale)} for g in cand.grid]
+    # far-apart values: each member keeps its own error bound (not ``nearby``)
+    for trial, y in zip(trials, simulate_many(setup, model, trials, nearby=False),
+                        strict=True):
         if y is None:
             continue
         e = e0 - (project(y) - project(y0))
@@ -195,8 +314,10 @@ def _grid(setup: Setup, proposal: Proposal, model, base: Mapping[str, float], y0
     return best
 
 
-# a sensor law's sensitivity to its parameter at null, from the probe's own series x
-SENSOR_LAWS = {"sensor-gain": lambda x: x, "sensor-offset": np.ones_like}
+# a sensor law's sensitivity to its parameter at null, from the probe's own series x on
+# the record's times t (a delay's is the series' slope, negated)
+SENSOR_LAWS = {"sensor-gain": lambda x, t: x, "sensor-offset": lambda x, t: np.ones_like(x),
+               "sensor-delay": lambda x, t: -np.gradient(x, t)}
 
 
 def _sensor(setup: Setup, state: ModelState, proposal: Proposal, model, base,
@@ -209,7 +330,8 @@ def _sensor(setup: Setup, state: ModelState, proposal: Proposal, model, base,
     if cand.target not in y0:
         return None
     bumped = dict(y0)
-    bumped[cand.target] = y0[cand.target] + SENSOR_LAWS[cand.effect](y0[cand.target])
+    bumped[cand.target] = y0[cand.target] + SENSOR_LAWS[cand.effect](
+        y0[cand.target], np.asarray(setup.record.t, float))
     col = project(bumped) - project(y0)
     e0 = project(setup.record) - project(y0)
     norm0 = float(e0 @ e0)
