@@ -10,6 +10,7 @@ from . import (
     diode,
     drivetrain,
     emf,
+    inverter,
     mechanical,
     passive,
     sources,
@@ -19,5 +20,5 @@ from . import (
     waveforms,
 )
 
-__all__ = ["bldc", "controlled", "diode", "drivetrain", "emf", "mechanical", "passive",
+__all__ = ["bldc", "controlled", "diode", "drivetrain", "emf", "inverter", "mechanical", "passive",
            "sources", "switches", "thermal", "varistor", "waveforms"]
