@@ -118,8 +118,8 @@ def _rectifier_reference(t_eval: np.ndarray) -> np.ndarray:
     t0, y, on, out_t, out_v = 0.0, [0.0], False, [], []
     while t0 < t_eval[-1]:
         knee.direction = -1 if on else 1  # off: watch v_d rise through Vf; on: fall
-        sol = solve_ivp(lambda t, y: [(current(t, y[0], on) - y[0] / R) / C], (t0, t_eval[-1]),
-                        y, events=knee, rtol=1e-12, atol=1e-14, dense_output=True,
+        sol = solve_ivp(lambda t, y, on=on: [(current(t, y[0], on) - y[0] / R) / C],
+                        (t0, t_eval[-1]), y, events=knee, rtol=1e-12, atol=1e-14, dense_output=True,
                         method="LSODA", max_step=1e-4)
         te = sol.t_events[0]
         end = te[0] if te.size else t_eval[-1]
