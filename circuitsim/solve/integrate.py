@@ -209,8 +209,9 @@ def model_system(model, run: Settings, p: tuple) -> System:
     switching = events.for_model(model, p, run.stop)
 
     def restart(t: float, y: np.ndarray, yp: np.ndarray):
-        y, yp = consistent_initial(model, t, y, p, yp_guess=yp)
-        return switching.settle(t, y, yp) if switching else (y, yp)
+        if switching is not None:
+            return switching.restart(t, y, yp)
+        return consistent_initial(model, t, y, p, yp_guess=yp)
 
     return System(model.fns[0], opts, restart, model.state_names, switching)
 
