@@ -20,7 +20,8 @@ def _limexp(u):
 
 @register("D", "diode")
 class Diode(OnePort):
-    """Diode from anode p to cathode n. ``model: shockley``: i = Is (exp(vd/(N Vt)) - 1),
+    """Diode from anode p to cathode n: Shockley with series resistance, piecewise linear, or
+    piecewise linear switched by events (ideal). ``model: shockley``: i = Is (exp(vd/(N Vt)) - 1),
     v = vd + Rs i. ``model: pwl``: i = (v - Vf)/Ron + Vf Goff above Vf, Goff v below it.
     ``model: ideal``: the same two lines, the branch a discrete state switched by events
     (on above Vf + Vh, off below Vf - Vh).

@@ -41,14 +41,16 @@ def _conductance(s, ron, roff):
 
 @register("tswitch", "time_switch")
 class TimeSwitch(OnePort):
-    """Switch driven by a signal of time: closed (Ron) at ``closed`` = 1, open (Roff) at 0,
-    e.g. ``closed: {pulse: {v2: 1, delay: 1 ms, width: 2 ms, period: 10 ms}}``.
+    """Switch driven by a signal of time: closed (Ron) at ``closed`` = 1, open (Roff) at 0
+    (``ideal``: switches by an event where the signal crosses 1/2), e.g.
+    ``closed: {pulse: {v2: 1, delay: 1 ms, width: 2 ms, period: 10 ms}}``.
 
     Parameters
     ----------
     closed : [1] 0 (open) or 1 (closed), value or waveform
     Ron : [ohm] closed resistance, default 1 mohm
     Roff : [ohm] open resistance, default 1 Gohm
+    model : smooth (default: a log-scale ramp over the signal's edge) or ideal
     """
 
     branches = (Branch("p", "n", "R"),)
@@ -73,8 +75,9 @@ class TimeSwitch(OnePort):
 
 @register("S", "vswitch")
 class VoltageSwitch(OnePort):
-    """Voltage-controlled switch (SPICE S): closed (Ron) above Vt + dV/2, open (Roff) below
-    Vt - dV/2; the control pins draw no current.
+    """Voltage-controlled switch (SPICE S): closed (Ron) above the threshold Vt, open (Roff)
+    below; ``smooth`` over a window dV, or ``ideal`` by events with hysteresis Vh (closed
+    above Vt + Vh, open below Vt - Vh, as SPICE's VT, VH). The control pins draw no current.
 
     Parameters
     ----------

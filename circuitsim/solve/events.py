@@ -133,6 +133,15 @@ def for_model(model, p: tuple, stop: float) -> Switching | None:
     return Switching(model, p, stop) if model.meta.get("events") else None
 
 
+def refuse(model, what: str) -> None:
+    """Raise SolverError if the model switches by events, which ``what`` cannot follow."""
+    owners = sorted({e["owner"] for e in model.meta.get("events", [])})
+    if owners:
+        raise SolverError(f"{what} does not follow switching events ({', '.join(owners)} "
+                          f"switch by events); use a transient run, or the smooth models "
+                          f"(model: smooth, pwm_leg)")
+
+
 def _ida(residual, opts: dict):
     import sksundae as sun
 
