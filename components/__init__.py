@@ -14,6 +14,7 @@ from . import (
     mechanical,
     passive,
     sources,
+    stickslip,
     switches,
     thermal,
     varistor,
@@ -21,4 +22,4 @@ from . import (
 )
 
 __all__ = ["bldc", "controlled", "diode", "drivetrain", "emf", "inverter", "mechanical", "passive",
-           "sources", "switches", "thermal", "varistor", "waveforms"]
+           "sources", "stickslip", "switches", "thermal", "varistor", "waveforms"]

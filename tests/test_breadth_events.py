@@ -82,7 +82,7 @@ def test_voltage_switch_ideal_relaxation_oscillator(compile_text) -> None:
     # an edge shows at the first output sample after it (1 us grid)
     assert np.all((got - exact >= -1e-12) & (got - exact <= 1e-6 + 1e-12))
     # the waveform itself: exponential pieces between the exact instants
-    assert np.max(np.abs(res["v"] - _relaxation_wave(res.t, exact))) < 1e-6
+    assert np.max(np.abs(res["v"] - _relaxation_wave(res.t, exact))) < 1e-6  # measured 3.3e-7
 
 
 def _relaxation_wave(t: np.ndarray, edges: np.ndarray) -> np.ndarray:
@@ -152,3 +152,59 @@ def test_ideal_diode_rectifier_against_scipy(compile_text) -> None:
     ref = _rectifier_reference(res.t)
     assert np.max(np.abs(res["vc"] - ref)) < 2e-8  # measured 2.7e-9 V
     assert _edges(res.t, res["on"]).size == 6  # on and off once per period
+
+
+def _brake_speed(t: np.ndarray) -> np.ndarray:
+    """Closed form of the brake test below [rad/s]: J = 0.01, w0 = 10, Tc = 0.5, Ts = 0.8,
+    load torque 0.2 N m ramping by 1 N m/s from 0.5 s to 1.2 N m at 1.5 s. Slips down to
+    rest at 1/3 s, stuck until the torque reaches Ts at 1.1 s, then slips forward."""
+    J, Tc = 0.01, 0.5
+    torque_area = np.where(t < 1.5, (t - 0.5) ** 2 / 2 + 0.2 * (t - 0.5),  # int_0.5^t T
+                           0.5 + 0.2 + 1.2 * (t - 1.5))
+    at_break = (1.1 - 0.5) ** 2 / 2 + 0.2 * 0.6
+    slip = (torque_area - at_break - Tc * (t - 1.1)) / J
+    return np.where(t < 1 / 3, 10 - 30 * t, np.where(t < 1.1, 0.0, slip))
+
+
+def test_stick_slip_brake_holds_exactly_and_breaks_away_at_static_capacity(compile_text
+                                                                           ) -> None:
+    """A braked inertia (kinetic 0.5 N m, static 0.8 N m) under a load torque: it slides to
+    rest, stays exactly at rest while the load rises, and breaks away when the load reaches
+    the static capacity (closed form in three pieces). The regularised clutch creeps
+    instead."""
+    model = compile_text("""
+        components:
+          - {name: J1, type: inertia, shaft: s, J: 0.01, w0: 10}
+          - {name: B1, type: stick_clutch, a: s, b: fixed, fn: 1, mu: 0.5, mu_s: 0.8}
+          - {name: T1, type: torque, shaft: s,
+             T: {pwl: [[0, 0.2], [0.5, 0.2], [1.5, 1.2]]}}
+        probes: {w: s.w, mode: B1.mode, tau: B1.tau}
+        analysis: {stop: 2, step: 1 ms, rtol: 1e-10, atol: 1e-12}
+    """)
+    res = model.simulate()
+    assert res.success, res.message
+    exact = _brake_speed(res.t)
+    stuck = (res.t > 1 / 3 + 1e-3) & (res.t < 1.1)
+    assert np.max(np.abs(res["w"][stuck])) < 1e-9  # no creep
+    assert np.max(np.abs(res["w"] - exact)) < 1e-9  # measured 1.7e-12 rad/s
+    late = _edges(res.t, res["mode"]) - np.array([1 / 3, 1.1])  # shown at the next sample
+    assert np.all((late > -1e-12) & (late <= 1e-3 + 1e-12)), late
+
+
+def test_stick_slip_clutch_locks_exactly(compile_text) -> None:
+    """The smooth clutch's test (tests/test_breadth_mechanics.py) with exact adhesion: a
+    shaft held at 10 rad/s drags an inertia at rest through 0.5 N m until their speeds meet
+    at 0.2 s, then carries it along: w = min(50 t, 10) with no creep at the lock."""
+    model = compile_text("""
+        components:
+          - {name: S1, type: speed, shaft: drive, W: 10}
+          - {name: M0, type: inertia, shaft: drive, J: 1}
+          - {name: K1, type: stick_clutch, a: drive, b: out, fn: 0.5}
+          - {name: M1, type: inertia, shaft: out, J: 0.01}
+        probes: {w: out.w, mode: K1.mode}
+        analysis: {stop: 0.5, step: 1 ms, rtol: 1e-9, atol: 1e-12}
+    """)
+    res = model.simulate()
+    assert res.success, res.message
+    assert np.max(np.abs(res["w"] - np.minimum(50 * res.t, 10.0))) < 1e-9  # measured 1.1e-11
+    assert res["mode"][-1] == 0 and res["mode"][1] == 1
