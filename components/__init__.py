@@ -10,6 +10,7 @@ from . import (
     diode,
     drivetrain,
     emf,
+    fluxtable,
     inverter,
     mechanical,
     passive,
@@ -21,5 +22,5 @@ from . import (
     waveforms,
 )
 
-__all__ = ["bldc", "controlled", "diode", "drivetrain", "emf", "inverter", "mechanical", "passive",
+__all__ = ["bldc", "controlled", "diode", "drivetrain", "emf", "fluxtable", "inverter", "mechanical", "passive",
            "sources", "stickslip", "switches", "thermal", "varistor", "waveforms"]
