@@ -61,3 +61,28 @@ def test_tabulated_flux_curve_up_and_down(compile_text) -> None:
     exact = np.where(t <= 5e-3, rise[:-1], _segment_walk(t, t_off, rise[-1], 0.0))
     assert np.max(np.abs(res["i"] - exact)) < 1e-7  # measured 9.5e-9 A
     assert sorted(set(np.round(res["ld"], 12))) == [0.0015, 0.005, 0.01]
+
+
+def test_initial_current_beyond_the_first_row(compile_text) -> None:
+    """Starting at i0 = 3 A (third segment, 1.5 mH) the events at t = 0 find the segment;
+    the current then decays through 1 ohm down the curve: exponentials of 1.5, 5 and 10 ms
+    joined where it crosses 2 A and 1 A (closed form; measured 2.5e-9 A)."""
+    model = compile_text("""
+        parameters: {I1: 1 A}
+        components:
+          - {name: R1, type: R, p: b, n: gnd, R: 1}
+          - name: L1
+            type: Lsat_table
+            p: b
+            n: gnd
+            i0: 3
+            points:
+              - {i: I1, psi: 10 mWb}
+              - {i: 2, psi: 15 mWb}
+              - {i: 4, psi: 18 mWb}
+        probes: {i: L1.i}
+        analysis: {stop: 20 ms, step: 10 us, rtol: 1e-10, atol: 1e-12}
+    """)
+    res = model.simulate()
+    assert res.success, res.message
+    assert np.max(np.abs(res["i"] - _segment_walk(res.t, 0.0, 3.0, 0.0))) < 1e-7
