@@ -53,7 +53,6 @@ class Switching:
         self.discrete = sorted({i for e in self.info for i in e["targets"]})
         self.recent: collections.deque = collections.deque(maxlen=ZENO_COUNT)
         self.span = ZENO_SPAN * stop
-        self.count = 0
         # every guard is a root function that matters when it falls through zero
         self.guards.terminal = [True] * len(self.info)
         self.guards.direction = [-1] * len(self.info)
@@ -95,7 +94,6 @@ class Switching:
                 break
             seen.add(key)
             y, yp = self.consistent(t, y, yp)
-            self.count += 1
             fired = None
         raise SolverError(f"at t = {t:.9g} s the switching of {', '.join(sorted(who))} does "
                           f"not settle: its modes keep changing at one instant. Give a switch "

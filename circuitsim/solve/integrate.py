@@ -3,7 +3,8 @@
 Consistent initial values include the derivatives of algebraic unknowns (IDA's own
 correction does not give those; a wrong y' there makes the first step fail). Waveform corners
 are breakpoints where the integrator restarts. Long runs go in chunks whose output can be
-decimated, so memory stays bounded.
+decimated, so memory stays bounded. A model with discrete states (ideal switches) integrates
+its segments through events.py, which stops at each switching and restarts.
 """
 
 from __future__ import annotations
