@@ -114,10 +114,12 @@ class Option:
 
 @dataclass(frozen=True, slots=True)
 class RecordList:
-    """A list of records, each with the numeric fields given (e.g. harmonics)."""
+    """A list of records, each with the numeric fields given (e.g. harmonics); ``min_rows``
+    is the fewest the component can work with (a table needs one row)."""
 
     doc: str
     fields: Mapping[str, Param]
+    min_rows: int = 0
 
 
 @dataclass(frozen=True, slots=True)

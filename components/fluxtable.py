@@ -56,7 +56,7 @@ class SaturatingInductorTable(OnePort):
     """
 
     branches = (Branch("p", "n", "L"),)
-    points = RecordList("flux curve: rows {i, psi} for i > 0, increasing", ROW)
+    points = RecordList("flux curve: rows {i, psi} for i > 0, increasing", ROW, min_rows=1)
     R = Param("ohm", "series resistance", default=0.0, nonnegative=True)
     i0 = Param("A", "initial current", default=0.0)
 

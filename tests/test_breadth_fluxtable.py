@@ -4,6 +4,9 @@ against the closed form of an RL circuit walking the curve's segments up and dow
 from __future__ import annotations
 
 import numpy as np
+import pytest
+
+import circuitsim as cs
 
 ROWS = [(1.0, 0.010), (2.0, 0.015), (4.0, 0.018)]  # (i [A], psi [Wb])
 R = 1.0  # [ohm]
@@ -86,3 +89,14 @@ def test_initial_current_beyond_the_first_row(compile_text) -> None:
     res = model.simulate()
     assert res.success, res.message
     assert np.max(np.abs(res["i"] - _segment_walk(res.t, 0.0, 3.0, 0.0))) < 1e-7
+
+
+def test_an_empty_table_is_refused_at_its_line(write_netlist) -> None:
+    """A flux table needs a row: the loader says so with the file, line and component."""
+    path = write_netlist("""
+        components:
+          - {name: V1, type: V, p: a, n: gnd, V: 1}
+          - {name: L1, type: Lsat_table, p: a, n: gnd, points: []}
+    """)
+    with pytest.raises(cs.NetlistError, match=r"net\.yaml:3: L1: 'points' needs at least 1"):
+        cs.load(path, allow_outside=True)
