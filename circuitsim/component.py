@@ -114,10 +114,12 @@ class Option:
 
 @dataclass(frozen=True, slots=True)
 class RecordList:
-    """A list of records, each with the numeric fields given (e.g. harmonics)."""
+    """A list of records, each with the numeric fields given (e.g. harmonics); ``min_rows``
+    is the fewest the component can work with (a table needs one row)."""
 
     doc: str
     fields: Mapping[str, Param]
+    min_rows: int = 0
 
 
 @dataclass(frozen=True, slots=True)
@@ -202,6 +204,26 @@ class Component:
         """Physics warnings for these numeric parameter values [SI]."""
         return []
 
+    def events(self, x: Scope) -> list[Event]:
+        """Discrete changes found by the integrator's root finding (default: none)."""
+        return []
+
+
+@dataclass(frozen=True)
+class Event:
+    """A discrete change: when ``guard`` falls through zero, each discrete state named in
+    ``sets`` takes its new value (expressions evaluated just before the change, so they may
+    read the old states and t); the integrator then restarts with consistent values.
+
+    A guard is written for the current mode and stays positive while the mode holds: a
+    switch with hysteresis h closes on ``Vt + h - vc`` and opens on ``vc - Vt + h``. After a
+    change the new guard must start positive (hysteresis, or the opposite of the old one),
+    or the element would switch back at once.
+    """
+
+    guard: Any
+    sets: tuple[tuple[Any, Any], ...]
+
 
 def _inherited(cls: type, attr: str) -> Any:
     for klass in cls.__mro__[1:]:
@@ -246,12 +268,20 @@ class Scope:
         object.__setattr__(self, "_ports", dict(ports))
         object.__setattr__(self, "_make_var", make_var)
         object.__setattr__(self, "_exports", {})
+        object.__setattr__(self, "_discrete", [])
         object.__setattr__(self, "der", der)
         object.__setattr__(self, "t", t)
 
     def var(self, name: str) -> sp.Symbol:
         sym = self._make_var(name)
         self._exports.setdefault(name, sym)
+        return sym
+
+    def discrete(self, name: str) -> sp.Symbol:
+        """A discrete state: constant between events (its derivative is zero), changed only
+        by an Event. It is an unknown like any other, so probes read it at every output."""
+        sym = self.var(name)
+        self._discrete.append(sym)
         return sym
 
     def __getattr__(self, name: str) -> Any:

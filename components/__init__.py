@@ -10,14 +10,17 @@ from . import (
     diode,
     drivetrain,
     emf,
+    fluxtable,
+    inverter,
     mechanical,
     passive,
     sources,
+    stickslip,
     switches,
     thermal,
     varistor,
     waveforms,
 )
 
-__all__ = ["bldc", "controlled", "diode", "drivetrain", "emf", "mechanical", "passive",
-           "sources", "switches", "thermal", "varistor", "waveforms"]
+__all__ = ["bldc", "controlled", "diode", "drivetrain", "emf", "fluxtable", "inverter", "mechanical", "passive",
+           "sources", "stickslip", "switches", "thermal", "varistor", "waveforms"]

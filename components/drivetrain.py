@@ -249,7 +249,7 @@ class Clutch(TwoFlange):
     """Friction clutch between two shafts (a brake when b is ``fixed``), regularised Coulomb
     friction: tau = mu fn(t) tanh(w_rel / w_slip). It slips while |w_rel| >> w_slip and
     (nearly) sticks below it: sticking is a creep of w_rel ~ w_slip tau / (mu fn), not
-    exact adhesion (that needs events).
+    exact adhesion (for that, ``stick_clutch``).
 
     Parameters
     ----------

@@ -6,6 +6,7 @@ VoltageSource from its signal block). ``@`` as a unit means "the unit of the sig
 
 from __future__ import annotations
 
+import math
 from typing import ClassVar
 
 import sympy as sp
@@ -199,3 +200,70 @@ class Pwl(Waveform):
 
     def breakpoints(self, p, t_stop):
         return [v for k, v in p.items() if k.startswith("t")]
+
+
+def _carrier_times(p, t_stop, per_period: int) -> list[float]:
+    """Times in [0, t_stop] where a carrier of ``per_period`` equal pieces has a corner."""
+    f, shift = p["freq"], p["phase"] / (2 * math.pi)
+    k = math.ceil(per_period * shift)  # first corner at or after t = 0
+    out = []
+    while True:
+        t = (k / per_period - shift) / f
+        if t > t_stop:
+            return out
+        if t >= 0:
+            out.append(t)
+        k += 1
+
+
+CARRIER = {"freq": Param("Hz", "carrier frequency", positive=True),
+           "phase": Param("rad", "phase shift (2 pi = one period; 120 deg for a third)",
+                          default=0.0),
+           "low": Param("@", "lowest value", default=-1.0),
+           "high": Param("@", "highest value", default=1.0),
+           "invert": Param("1", "1: mirrored (high where it would be low)", default=0.0,
+                           nonnegative=True, integer=True, maximum=1)}
+
+
+def _scaled(unit, p):
+    """A unit carrier in [-1, 1] scaled to [low, high], mirrored when ``invert`` is 1."""
+    u = unit * (1 - 2 * p["invert"])
+    return p["low"] + (p["high"] - p["low"]) * (u + 1) / 2
+
+
+@register_waveform("triangle")
+class Triangle(Waveform):
+    """PWM carrier: low at the start of each period, high at its middle (as ``pwm_leg``'s),
+    shifted by ``phase``. Its corners are breakpoints, so each half-period crosses a slowly
+    varying reference once and an event finds the crossing."""
+
+    params: ClassVar[dict[str, Param]] = CARRIER
+
+    def expr(self, t, p, data=None):
+        frac = Pmod(p["freq"] * t + p["phase"] / (2 * sp.pi), sp.Integer(1))
+        unit = sp.Piecewise((4 * frac - 1, frac < sp.Rational(1, 2)), (3 - 4 * frac, True))
+        return _scaled(unit, p)
+
+    def breakpoints(self, p, t_stop):
+        return _carrier_times(p, t_stop, 2)
+
+    def period(self, p):
+        return 1.0 / p["freq"]
+
+
+@register_waveform("sawtooth")
+class Sawtooth(Waveform):
+    """PWM carrier rising from low to high over each period and falling back at once
+    (falling ramps with ``invert: 1``), shifted by ``phase``; the fall is a breakpoint."""
+
+    params: ClassVar[dict[str, Param]] = CARRIER
+
+    def expr(self, t, p, data=None):
+        frac = Pmod(p["freq"] * t + p["phase"] / (2 * sp.pi), sp.Integer(1))
+        return _scaled(2 * frac - 1, p)
+
+    def breakpoints(self, p, t_stop):
+        return _carrier_times(p, t_stop, 1)
+
+    def period(self, p):
+        return 1.0 / p["freq"]

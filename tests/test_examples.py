@@ -12,10 +12,12 @@ import circuitsim as cs
 
 from conftest import NETLISTS
 
-# netlists only: a features file (measured targets for `circuitsim fit`) lives beside them
+# netlists only: a features file (measured targets for `circuitsim fit`) lives beside them,
+# and a library of subcircuits (no components of its own) is run through its users
 ALL = sorted(p for p in NETLISTS.rglob("*.yaml")
              if not p.read_text().lstrip("# \n").startswith("features") and
-             "\nfeatures:" not in p.read_text())
+             "\nfeatures:" not in p.read_text() and
+             not ("\nsubcircuits:" in p.read_text() and "\ncomponents:" not in p.read_text()))
 
 
 def test_there_are_examples():
@@ -24,7 +26,7 @@ def test_there_are_examples():
 
 
 # a run of more than ~5 s belongs to the slow set (.ci/run runs it; the README command not)
-SLOW = {"kapun2008/bldc.yaml"}
+SLOW = {"kapun2008/bldc.yaml", "inverters/kim_hbridge.yaml", "inverters/bldc_inverter.yaml"}
 
 
 def _needs(path):

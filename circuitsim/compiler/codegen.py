@@ -18,7 +18,7 @@ from __future__ import annotations
 
 from typing import Any
 
-CODEGEN_VERSION = "9"
+CODEGEN_VERSION = "10"
 
 
 def _printers():
@@ -386,12 +386,42 @@ def generate(dae) -> tuple[str, dict[str, Any]]:
     # only when asked for: a circuit of thousands of parts exports tens of thousands of
     # quantities, and evaluating them all at every output point would cost gigabytes
     src += ["OBSERVED = ["] + [f"    {_print(e, vector)!r}," for e in obs] + ["]", ""]
+    ev_src, ev_meta = _events(dae, ren, n, n_par, scalar)
+    src += ev_src
     meta = _meta(dae, names_out, init_syms)
+    meta.update(ev_meta)
     meta.update({"jac_nnz": len(pattern), "jac_pattern": [[i for i, _ in pattern],
                                                           [j for _, j in pattern]],
                  "fy_pattern": [[i for i, _ in fy], [j for _, j in fy]],
                  "fyp_pattern": [[i for i, _ in fyp], [j for _, j in fyp]], **lin_meta})
     return "\n".join(src), meta
+
+
+def _events(dae, ren: dict, n: int, n_par: int, scalar) -> tuple[list[str], dict[str, Any]]:
+    """``make_events(T, TD)`` -> (guards, jumps): ``guards(t, y, yp, g, p)`` fills every
+    switching guard (the root functions IDA watches), ``jumps(t, y, yp, p)`` returns the new
+    values of the discrete states, event after event (``meta["events"]`` says which states
+    each one sets). A separate factory, so a model without events costs nothing."""
+    from circuitsim.component import as_expr
+
+    events = getattr(dae, "events", ())
+    if not events:
+        return [], {"events": []}
+    index = {s: k for k, s in enumerate(dae.states)}
+    guards = [as_expr(e.guard).xreplace(ren) for e in events]
+    values, info = [], []
+    for e in events:
+        info.append({"owner": e.owner, "start": len(values),
+                     "targets": [index[s] for s, _ in e.sets]})
+        values += [as_expr(v).xreplace(ren) for _, v in e.sets]
+    src = ["def make_events(T, TD):"]
+    src += _body("guards", "t, y, yp, g, p", guards, [f"g[{k}]" for k in range(len(guards))],
+                 n, n_par, scalar, fail="g[:] = math.nan")
+    src += _body("jumps", "t, y, yp, p", values, [f"out[{k}]" for k in range(len(values))],
+                 n, n_par, scalar, pre=[f"        out = [0.0] * {len(values)}"],
+                 post=["        return out"], fail=f"out = [math.nan] * {len(values)}")
+    src += ["    return guards, jumps", ""]
+    return src, {"events": info}
 
 
 def _meta(dae, names_out: list[str], init_syms: list) -> dict[str, Any]:

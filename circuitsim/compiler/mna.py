@@ -42,6 +42,16 @@ class BreakSource:
 
 
 @dataclass(frozen=True)
+class SwitchEvent:
+    """A component's discrete change (see ``Component.events``), with the component named
+    for messages: when ``guard`` falls through zero the discrete states take their values."""
+
+    owner: str
+    guard: sp.Expr
+    sets: tuple[tuple[sp.Symbol, sp.Expr], ...]
+
+
+@dataclass(frozen=True)
 class Dae:
     """F(t, x, x', p) = 0 in sympy, with every name a probe may ask for."""
 
@@ -58,6 +68,7 @@ class Dae:
     breaks: tuple[BreakSource, ...] = ()
     units: Mapping[str, str] = field(default_factory=dict)
     integrals: Mapping[str, str] = field(default_factory=dict)  # state name -> domain
+    events: tuple[SwitchEvent, ...] = ()
 
     def differentiated(self) -> set[sp.Symbol]:
         """Unknowns whose derivative appears in some equation."""
@@ -125,6 +136,7 @@ class _Assembly:
         self.integrals: dict[str, sp.Expr] = {}
         self.integral_domains: dict[str, str] = {}
         self.flows: dict[str, list[sp.Symbol]] = {}
+        self.events: list[SwitchEvent] = []
 
     def new(self, name: str) -> sp.Symbol:
         s = sp.Symbol(name, real=True)
@@ -170,6 +182,7 @@ class _Assembly:
         for eq in [*comp.bind(scope), *comp.equations(scope)]:
             self.equations.append(as_expr(eq))
             self.origins.append(f"{spec.name} ({spec.type})")
+        self.discrete(spec, comp, scope)
         stored = comp.energy(scope)
         if stored is not None:
             self.exports[f"{spec.name}.energy"] = as_expr(stored)
@@ -184,6 +197,15 @@ class _Assembly:
                     self.units.setdefault(f"{spec.name}.{k}", dom.across_unit
                                           if k == dom.across else dom.through_unit)
         self.power(spec)
+
+    def discrete(self, spec: ComponentSpec, comp: Component, scope: Scope) -> None:
+        """Discrete states hold between events (der = 0); the events that change them."""
+        for sym in scope._discrete:
+            self.equations.append(self.der(sym))
+            self.origins.append(f"{spec.name} ({spec.type}): discrete state {sym.name}")
+        for ev in comp.events(scope):
+            sets = tuple((s, as_expr(v)) for s, v in ev.sets)
+            self.events.append(SwitchEvent(spec.name, as_expr(ev.guard), sets))
 
     def power(self, spec: ComponentSpec) -> None:
         """Power absorbed by the component, in total and per domain (an EMF converts between
@@ -247,7 +269,8 @@ def assemble(net: Netlist) -> Dae:
     probes = asm.probes()
     return Dae(asm.t, tuple(asm.unknowns), dict(asm.der.table), tuple(asm.equations),
                tuple(asm.origins), tuple(asm.params.values()), asm.exports, asm.initial,
-               probes, tuple(asm.tables), tuple(asm.breaks), asm.units, asm.integral_domains)
+               probes, tuple(asm.tables), tuple(asm.breaks), asm.units, asm.integral_domains,
+               tuple(asm.events))
 
 
 def _instantiate(spec: ComponentSpec, asm: _Assembly) -> tuple[Component, Scope]:

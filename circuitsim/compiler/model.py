@@ -125,10 +125,11 @@ class CompiledModel:
     meta: dict
     warnings: tuple[str, ...] = ()
     _fns: Any = field(default=None, repr=False)
+    _event_fns: Any = field(default=None, repr=False)
 
     def __getstate__(self):
         return {"netlist": self.netlist, "key": self.key, "meta": self.meta,
-                "warnings": self.warnings, "_fns": None}
+                "warnings": self.warnings, "_fns": None, "_event_fns": None}
 
     def __setstate__(self, state):
         self.__dict__.update(state)
@@ -150,7 +151,16 @@ class CompiledModel:
             raw = module.make([t.__call__ for t in tables], [t.slope for t in tables],
                               [t.vec for t in tables], [t.vec_slope for t in tables])
             self._fns = _bind(raw, self.meta, self.linsolver)
+            if self.meta.get("events"):
+                self._event_fns = module.make_events([t.__call__ for t in tables],
+                                                     [t.slope for t in tables])
         return self._fns[:5]
+
+    @property
+    def event_fns(self):
+        """(guards, jumps) of the switching events (see codegen._events), or None."""
+        _ = self.fns
+        return self._event_fns
 
     @property
     def linsolver(self) -> str:

@@ -30,7 +30,7 @@ import networkx as nx
 import numpy as np
 import sympy as sp
 
-from circuitsim.compiler.mna import BreakSource, Dae, format_equations
+from circuitsim.compiler.mna import BreakSource, Dae, SwitchEvent, format_equations
 from circuitsim.component import as_expr
 from circuitsim.errors import SingularCircuitError
 
@@ -60,6 +60,7 @@ class IndexOneDae:
     units: Mapping[str, str]
     report: tuple[str, ...]
     integrals: Mapping[str, str]
+    events: tuple[SwitchEvent, ...] = ()
 
     def pretty(self, latex: bool = False) -> str:
         return format_equations(self.equations, self.origins,
@@ -431,9 +432,13 @@ def reduce_index(dae: Dae, nominal: Mapping[sp.Symbol, float]) -> IndexOneDae:
     resolve = sys.resolved()
     exports = {k: as_expr(v).xreplace(resolve) for k, v in dae.exports.items()}
     probes = {k: as_expr(v).xreplace(resolve) for k, v in dae.probes.items()}
+    # a guard or a new value may name an eliminated unknown: write it in the states
+    events = tuple(SwitchEvent(e.owner, e.guard.xreplace(resolve),
+                               tuple((s, v.xreplace(resolve)) for s, v in e.sets))
+                   for e in dae.events)
     return IndexOneDae(dae.t, states, yp, len(diff), tuple(sys.eqs), tuple(sys.origins),
                        dae.params, resolve, exports, probes, dict(dae.initial), dae.tables,
-                       dae.breaks, dae.units, tuple(sys.report), dae.integrals)
+                       dae.breaks, dae.units, tuple(sys.report), dae.integrals, events)
 
 
 def _check_square(sys: _System) -> None:

@@ -694,6 +694,9 @@ class _Builder:
                 if not isinstance(items, list):
                     raise NetlistError(f"'{key}' must be a list of mappings with fields "
                                        f"{', '.join(d.fields)}", loc_of(key), name)
+                if len(items) < d.min_rows:
+                    raise NetlistError(f"'{key}' needs at least {d.min_rows} row(s) with "
+                                       f"fields {', '.join(d.fields)}", loc_of(key), name)
                 for i, item in enumerate(items):
                     iloc = _loc(path, items, index=i)
                     if not isinstance(item, Mapping):

@@ -3,7 +3,8 @@
 Consistent initial values include the derivatives of algebraic unknowns (IDA's own
 correction does not give those; a wrong y' there makes the first step fail). Waveform corners
 are breakpoints where the integrator restarts. Long runs go in chunks whose output can be
-decimated, so memory stays bounded.
+decimated, so memory stays bounded. A model with discrete states (ideal switches) integrates
+its segments through events.py, which stops at each switching and restarts.
 """
 
 from __future__ import annotations
@@ -16,6 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from circuitsim.errors import SolverError
+from circuitsim.solve import events
 from circuitsim.solve.init import check_initial, consistent_initial, initial_state
 from circuitsim.solve.result import SimResult, Status
 from circuitsim.solve.sources import bound_step
@@ -195,6 +197,7 @@ class System:
     opts: dict
     restart: object  # (t, y, y') -> consistent (y, y') at t
     names: tuple[str, ...]
+    switching: events.Switching | None = None  # discrete states changed at roots
 
 
 def model_system(model, run: Settings, p: tuple) -> System:
@@ -204,10 +207,14 @@ def model_system(model, run: Settings, p: tuple) -> System:
             "max_num_steps": 200_000, "algebraic_idx": list(range(nd, n)) or None,
             **model.ida_options()}
 
+    switching = events.for_model(model, p, run.stop)
+
     def restart(t: float, y: np.ndarray, yp: np.ndarray):
+        if switching is not None:
+            return switching.restart(t, y, yp)
         return consistent_initial(model, t, y, p, yp_guess=yp)
 
-    return System(model.fns[0], opts, restart, model.state_names)
+    return System(model.fns[0], opts, restart, model.state_names, switching)
 
 
 def _integrate(model, run: Settings, p: tuple, edges: list[float],
@@ -222,12 +229,18 @@ def integrate_system(system: System, run: Settings, edges: list[float],
     """IDA from corner to corner, restarting with consistent derivatives at each."""
     eps = 1e-11 * run.stop
     y, yp = start
+    if system.switching is not None:  # the modes at t = 0 follow the initial values
+        try:
+            y, yp = system.switching.settle(0.0, y, yp)
+        except SolverError as exc:
+            return Status.SOLVER_FAILED, exc.bare, 0, 0
+    step = events.segment if system.switching is not None else _segment
     first = run.t_eval[run.t_eval <= eps]
     if first.size:
         record(first[:1], y[None, :], yp[None, :])
     state = _Segment(y, yp, 0.0, 0, 0)
     for a, b in itertools.pairwise(edges):
-        detail = _segment(system, run, a, b, eps, state, record, chunk)
+        detail = step(system, run, a, b, eps, state, record, chunk)
         if detail is None and b < run.stop:  # a waveform corner: consistent derivatives
             try:
                 state.y, state.yp = system.restart(b, state.y, state.yp)

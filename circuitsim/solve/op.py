@@ -61,8 +61,10 @@ def _averaged(model, t: float, p: tuple, angles: list[int], samples: np.ndarray)
 def operating_point(model, params: Mapping[str, float] | None = None, t: float = 0.0,
                     tol: float = 1e-12, max_iter: int = 100) -> OperatingPoint:
     """Newton on the averaged residual with y' = 0 except for free integrals (see module)."""
+    from circuitsim.solve.events import refuse
     from circuitsim.solve.init import initial_state
 
+    refuse(model, "the operating point")
     names = model.state_names
     n = len(names)
     p = model.param_vector(params)

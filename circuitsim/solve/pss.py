@@ -96,6 +96,9 @@ def periodic_steady_state(model, params: Mapping[str, float] | None = None, *,
     Circuits driven by a periodic source: give ``period`` [s]; unknowns are the differential
     states. The Jacobian of the map is built by finite differences of short integrations.
     """
+    from circuitsim.solve.events import refuse
+
+    refuse(model, "the periodic steady state")
     shoot, z = _setup(model, params, order, period, rtol, atol)
     z, r, it = _newton(shoot, z, tol, max_iter)
     y0, T = shoot.unpack(z)

@@ -1,0 +1,224 @@
+"""Switching by events: discrete states that change at roots of their guards.
+
+A component declares discrete states (constant between events: der = 0) and the events that
+change them (``Component.events``). IDA watches every guard as a root function, falling
+through zero; at a root the integration stops, the event's discrete states take their new
+values, every further event whose guard the new values leave at or below zero is applied at
+the same instant (event iteration), and IDA restarts from values made consistent by
+``init.consistent_initial`` (the differential states, discrete ones included, are kept; the
+algebraic unknowns and all derivatives are solved again).
+
+A switching that cannot settle -- the same modes coming back within one instant, or a long
+run of switchings with no time between them -- stops the run with the elements named: it
+is a switch without hysteresis whose control sits on its threshold, or a circuit that has no
+consistent mode (an ideal diode driving an ideal current source backwards).
+
+Kept apart from integrate.py, which only hands a segment to ``segment`` when the model has
+events.
+"""
+
+from __future__ import annotations
+
+import collections
+import warnings
+
+import numpy as np
+
+from circuitsim.errors import SolverError
+from circuitsim.solve.init import consistent_initial
+
+#: Rounds of event iteration at one instant before the switching is declared chattering
+#: (a half-bridge commutation takes three: gate off, diode on, dead time over).
+MAX_ROUNDS = 20
+#: This many switchings within ZENO_SPAN * stop of each other is chatter, not switching.
+ZENO_COUNT = 64
+ZENO_SPAN = 1e-10
+#: IDA's return flag for a root (SUNDIALS IDA_ROOT_RETURN).
+ROOT_RETURN = 2
+#: Residual tolerance of the restart, relative to 1 + max |y|. consistent_initial's default
+#: (1e-10) is loose when some state is large: at 600 rad/s it left a current 2.5e-8 A off,
+#: and IDA's first step then failed its error test at atol 1e-9 down to h = 1e-17.
+RESTART_TOL = 1e-12
+
+
+class Switching:
+    """The events of one model at one parameter vector: IDA's root functions, the jumps of
+    the discrete states and the event iteration."""
+
+    def __init__(self, model, p: tuple, stop: float):
+        self.model, self.p = model, p
+        self.guards, self.jumps = model.event_fns
+        self.info = model.meta["events"]
+        self.g = np.zeros(len(self.info))
+        self.discrete = sorted({i for e in self.info for i in e["targets"]})
+        self.recent: collections.deque = collections.deque(maxlen=ZENO_COUNT)
+        self.span = ZENO_SPAN * stop
+        # every guard is a root function that matters when it falls through zero
+        self.guards.terminal = [True] * len(self.info)
+        self.guards.direction = [-1] * len(self.info)
+
+    def ida_options(self) -> dict:
+        return {"eventsfn": self.guards, "num_events": len(self.info)}
+
+    def owners(self, fired: np.ndarray) -> list[str]:
+        return sorted({self.info[k]["owner"] for k in np.flatnonzero(fired)})
+
+    def apply(self, t: float, y: np.ndarray, yp: np.ndarray, fired: np.ndarray) -> np.ndarray:
+        """y with the discrete states of the fired events set (all new values computed from
+        the old states first: the events of one instant happen together)."""
+        vals = self.jumps(t, y, yp, self.p)
+        out = np.array(y, float)
+        for k in np.flatnonzero(fired):
+            e = self.info[k]
+            for j, idx in enumerate(e["targets"]):
+                out[idx] = vals[e["start"] + j]
+        return out
+
+    def settle(self, t: float, y: np.ndarray, yp: np.ndarray,
+               fired: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+        """Apply ``fired`` (None: whatever guards are not positive), then event iteration
+        until every guard is positive; consistent (y, y') at t. Raises SolverError when the
+        modes do not settle."""
+        seen: set[tuple] = set()
+        who: set[str] = set()
+        for _ in range(MAX_ROUNDS):
+            if fired is None:
+                self.guards(t, y, yp, self.g, self.p)
+                fired = self.g <= 0
+            if not fired.any():
+                return y, yp
+            who.update(self.owners(fired))
+            y = self.apply(t, y, yp, fired)
+            key = tuple(np.round(y[self.discrete], 12))
+            if key in seen:
+                break
+            seen.add(key)
+            y, yp = self.consistent(t, y, yp)
+            fired = None
+        raise SolverError(f"at t = {t:.9g} s the switching of {', '.join(sorted(who))} does "
+                          f"not settle: its modes keep changing at one instant. Give a switch "
+                          f"a hysteresis (Vh) or check what drives it")
+
+    def consistent(self, t: float, y: np.ndarray, yp: np.ndarray
+                   ) -> tuple[np.ndarray, np.ndarray]:
+        """Consistent (y, y') at t to RESTART_TOL, or to consistent_initial's own tolerance
+        where rounding stops Newton short of it."""
+        try:
+            return consistent_initial(self.model, t, y, self.p, yp_guess=yp,
+                                      tol=RESTART_TOL, max_iter=12)
+        except SolverError:
+            return consistent_initial(self.model, t, y, self.p, yp_guess=yp)
+
+    def restart(self, t: float, y: np.ndarray, yp: np.ndarray
+                ) -> tuple[np.ndarray, np.ndarray]:
+        """Restart at a waveform corner: consistent values, then whatever switches there."""
+        y, yp = self.consistent(t, y, yp)
+        return self.settle(t, y, yp)
+
+    def note(self, t: float, fired: np.ndarray) -> str | None:
+        """Record a root; a message if the roots pile up with no time between them."""
+        self.recent.append((t, tuple(self.owners(fired))))
+        if len(self.recent) == ZENO_COUNT and t - self.recent[0][0] <= self.span:
+            who = sorted({o for _, names in self.recent for o in names})
+            return (f"at t = {t:.9g} s {', '.join(who)} switched {ZENO_COUNT} times within "
+                    f"{t - self.recent[0][0]:.3g} s (chatter): give the switch a hysteresis "
+                    f"(Vh) or a control that does not sit on its threshold")
+        return None
+
+
+def for_model(model, p: tuple, stop: float) -> Switching | None:
+    """The model's switching at parameters p, or None when it has no events."""
+    return Switching(model, p, stop) if model.meta.get("events") else None
+
+
+def refuse(model, what: str) -> None:
+    """Raise SolverError if the model switches by events, which ``what`` cannot follow."""
+    owners = sorted({e["owner"] for e in model.meta.get("events", [])})
+    if owners:
+        raise SolverError(f"{what} does not follow switching events ({', '.join(owners)} "
+                          f"switch by events); use a transient run, or the smooth models "
+                          f"(model: smooth, pwm_leg)")
+
+
+def _ida(residual, opts: dict):
+    import sksundae as sun
+
+    with warnings.catch_warnings():
+        warnings.filterwarnings("ignore", message="Custom sparse Jacobian approximation")
+        return sun.ida.IDA(residual, **opts)
+
+
+def _targets(t_eval: np.ndarray, a: float, b: float, eps: float):
+    """Output times of (a, b]: the times to stop at, whether each is wanted, their labels
+    (one within eps of the corner b is reported as the state at b)."""
+    mine = t_eval[(t_eval > a + eps) & (t_eval <= b + eps)]
+    inner = mine[mine < b - eps]
+    targets = np.append(inner, b)
+    wanted = np.append(np.ones(inner.size, bool), mine.size > inner.size)
+    labels = np.append(inner, mine[-1] if mine.size > inner.size else b)
+    return targets, wanted, labels
+
+
+def segment(system, run, a: float, b: float, eps: float, state, record, chunk: int
+            ) -> str | None:
+    """Integrate over (a, b] as integrate's segments do, stopping at every root of a guard
+    to switch and restart; None, or why it failed."""
+    sw: Switching = system.switching
+    targets, wanted, labels = _targets(run.t_eval, a, b, eps)
+    opts = {**system.opts, **sw.ida_options()}
+    lo = 0
+    while lo < targets.size:
+        part = targets[lo:lo + chunk]
+        try:
+            sol = _ida(system.residual, opts).solve(np.concatenate([[state.t], part]),
+                                                    state.y, state.yp)
+        except Exception as exc:  # noqa: BLE001 - the wrapper raises assorted types
+            return (f"at t = {state.t:.6g} s the integrator stopped ({exc!r}); try "
+                    f"smaller tolerances or max_step")
+        state.nfev += int(sol.nfev or 0)
+        state.njev += int(sol.njev or 0)
+        root = sol.status == ROOT_RETURN
+        got_t, got_y, got_yp = np.asarray(sol.t), np.asarray(sol.y), np.asarray(sol.yp)
+        if part.size == 1 and got_t.size > 1:  # one-step mode: keep the start and the end
+            got_t, got_y, got_yp = (np.concatenate([x[:1], x[-1:]])
+                                    for x in (got_t, got_y, got_yp))
+        done = max(got_t.size - 1 - int(root), 0)
+        if done:
+            w = wanted[lo:lo + done]
+            record(labels[lo:lo + done][w], got_y[1:done + 1][w], got_yp[1:done + 1][w])
+        lo += done
+        if root:
+            why = _switch(sw, sol, got_t[-1], got_y[-1], got_yp[-1], state)
+            if why:
+                return why
+            while lo < targets.size and targets[lo] <= state.t + eps:  # outputs at the
+                if wanted[lo]:                                        # switching instant
+                    record(labels[lo:lo + 1], state.y[None, :], state.yp[None, :])
+                lo += 1
+            continue
+        if not sol.success or done < part.size:
+            return _failure(system.names, sol, float(got_t[-1]) if got_t.size else state.t)
+        state.y, state.yp, state.t = got_y[-1], got_yp[-1], float(got_t[-1])
+    return None
+
+
+def _switch(sw: Switching, sol, t: float, y: np.ndarray, yp: np.ndarray, state
+            ) -> str | None:
+    """Apply the events IDA found at t and settle; the state moves to t."""
+    fired = np.asarray(sol.i_events)[-1] != 0
+    why = sw.note(float(t), fired)
+    if why:
+        return why
+    try:
+        state.y, state.yp = sw.settle(float(t), y, yp, fired)
+    except SolverError as exc:
+        return exc.bare
+    state.t = float(t)
+    return None
+
+
+def _failure(names: tuple[str, ...], sol, t_fail: float) -> str:
+    y, yp = np.asarray(sol.y), np.asarray(sol.yp)
+    name = names[int(np.argmax(np.abs(yp[-1])))] if y.size else "?"
+    return (f"at t = {t_fail:.6g} s ({str(sol.message).strip()}); fastest-changing variable: "
+            f"{name}. Try smaller tolerances or max_step, or run `circuitsim check NETLIST`")
