@@ -38,6 +38,10 @@ def add_cli(sub) -> None:
     d.add_argument("--set", action="append", metavar="NAME=VALUE",
                    help="override a parameter (units checked); for a declared free one, its "
                         "start value. The written netlist carries the value")
+    d.add_argument("--full-record", action="store_true",
+                   help="use every row, even of a long record sampled far faster than its "
+                        "content needs (by default such a record is filtered and reduced to a "
+                        "working resolution, and the report says how)")
     d.add_argument("--json", action="store_true", help="print the report (as --report) as JSON")
     d.add_argument("--quiet", action="store_true", help="no progress messages")
     d.set_defaults(func=cmd_diagnose)
@@ -100,10 +104,12 @@ def _run_diagnosis(args, net, model, free, overrides, say):
     probes = [s.strip() for item in args.probes or [] for s in item.split(",") if s.strip()]
     check_columns(probes, record.names, args.data)
     return diagnose(net, record, free, probes=probes or None, max_effects=args.max_effects,
-                    params=overrides, progress=say)
+                    params=overrides, progress=say, reduce=not args.full_record)
 
 
 def _print(diag) -> None:
+    if diag.reduction is not None and diag.reduction.reduced:
+        print(diag.reduction.note())
     print(diag.summary())
     for a in diag.effects:
         print(f"  + {a.effect} on {a.target}: " + ", ".join(

@@ -34,6 +34,7 @@ Top-level imports stay light (numpy only): the CLI imports this module on every 
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import warnings
 from collections.abc import Callable, Mapping, Sequence
@@ -105,6 +106,8 @@ class FitResult:
     params : every override of the fitted model (fixed ones and the estimates) [SI]:
         ``model.simulate(params=fit.params)`` reproduces the fit.
     sim : the fitted transient on the record's grid (record), else None.
+    reduction : what ``loop.reduce.reduce_record`` did to the record (record), else None;
+        residuals, errors and ``sim`` are on the working record it produced.
     predicted : model values of the features at the estimate (features), else empty.
     stages : the least-squares stages run, in order.
     """
@@ -130,6 +133,7 @@ class FitResult:
     measured: dict[str, float] = field(default_factory=dict)
     sigma: dict[str, float | None] = field(default_factory=dict)
     units: dict[str, str] = field(default_factory=dict)
+    reduction: Any = None
 
     @property
     def error(self) -> float:
@@ -168,6 +172,8 @@ class FitResult:
         else:
             out["rms_residual"] = {k: float(np.sqrt(np.mean(np.asarray(v) ** 2)))
                                    for k, v in self.residuals.items()}
+            if self.reduction is not None:
+                out["record"] = self.reduction.as_dict()
         return out
 
 
@@ -643,7 +649,8 @@ def predict_features(model, features: FeatureSet, params: Mapping[str, float] | 
 def fit_features(model, features: FeatureSet, free: Sequence[str], *,
                  params: Mapping[str, float] | None = None,
                  bounds: Mapping[str, tuple[float, float]] | None = None,
-                 harmonic: str = "small-signal", max_nfev: int = 200) -> FitResult:
+                 harmonic: str = "small-signal", max_nfev: int = 200,
+                 progress: Callable[[str], None] | None = None) -> FitResult:
     """Fit ``free`` parameters of a compiled model to measured features.
 
     Parameters
@@ -657,6 +664,7 @@ def fit_features(model, features: FeatureSet, free: Sequence[str], *,
         sign kept.
     harmonic : 'small-signal' (default) or 'pss' (see ``predict_features``).
     max_nfev : largest number of model evaluations (Jacobian evaluations not counted).
+    progress : called with a line of text after each evaluation of the model.
 
     Returns
     -------
@@ -676,7 +684,8 @@ def fit_features(model, features: FeatureSet, free: Sequence[str], *,
     def overrides(z: np.ndarray) -> dict[str, float]:
         return {**params, **dict(zip(space.names, space.theta(z).tolist(), strict=True))}
 
-    fun = _feature_residual(model, features, overrides, harmonic, vals, w, failures)
+    fun = _feature_residual(model, features, overrides, harmonic, vals, w, failures,
+                            progress)
     z0 = np.zeros(len(free))
     r0 = fun(z0)
     if failures[0]:
@@ -700,17 +709,23 @@ def fit_features(model, features: FeatureSet, free: Sequence[str], *,
 
 
 def _feature_residual(model, features: FeatureSet, overrides, harmonic: str,
-                      vals: np.ndarray, w: np.ndarray, failures: list[int]):
+                      vals: np.ndarray, w: np.ndarray, failures: list[int],
+                      progress: Callable[[str], None] | None = None):
     """The features' residual in sigmas at a parameter vector z (a failed evaluation counts
     in ``failures`` and returns the penalty)."""
+    calls = [0]
 
     def fun(z: np.ndarray) -> np.ndarray:
+        calls[0] += 1
         try:
             pred = predict_features(model, features, overrides(z), harmonic)
         except (SolverError, ParameterError, np.linalg.LinAlgError):
             failures[0] += 1
             return np.full(vals.size, FAILED_PENALTY)
-        return (pred - vals) / w
+        r = (pred - vals) / w
+        if progress is not None:
+            progress(f"features: {calls[0]} evaluations, cost {0.5 * float(r @ r):.6g}")
+        return r
 
     return fun
 
@@ -809,7 +824,9 @@ def fit_record(model, record: Record, free: Sequence[str], *,
                bounds: Mapping[str, tuple[float, float]] | None = None,
                probes: Sequence[str] | None = None, staged: bool = True,
                rtol: float = 1e-8, atol: float | None = None,
-               max_nfev: int = 100, weights: Mapping[str, float] | None = None) -> FitResult:
+               max_nfev: int = 100, weights: Mapping[str, float] | None = None,
+               reduce: bool = True, progress: Callable[[str], None] | None = None
+               ) -> FitResult:
     """Fit ``free`` parameters of a compiled model to a measured record (output error).
 
     The model is simulated from rest on the record's time grid and compared with each probe
@@ -833,16 +850,22 @@ def fit_record(model, record: Record, free: Sequence[str], *,
         because finite differences of the parameters must see the model, not the solver.
     max_nfev : largest number of simulations per stage (Jacobian evaluations not counted).
     weights : per probe, the scale its residual is divided by [probe unit] (its noise level,
-        when known); default: the probe's spread.
+        when known; on a reduced record, the working record's); default: the probe's spread.
+    reduce : first bring a long, oversampled record to the resolution its content needs
+        (``loop.reduce.reduce_record``). progress : called with a line at each simulation.
 
     Returns
     -------
     FitResult
         With ``kind='record'``, ``sim`` the fitted transient, ``residuals[probe]`` = measured -
-        model on the record's grid, ``errors[probe]`` the NRMSE.
+        model on the (working) record's grid, ``errors[probe]`` the NRMSE, ``reduction``.
     """
+    from circuitsim.loop.reduce import reduce_record
+
+    record, reduction = reduce_record(record, _probes_of(model, record, probes),
+                                      progress=progress) if reduce else (record, None)
     prob = _RecordProblem(model, record, free, dict(params or {}), bounds, probes, weights,
-                          rtol, atol)
+                          rtol, atol, progress)
     z = np.zeros(len(free))
     r0 = prob.full(z)
     if prob.failures:
@@ -852,17 +875,28 @@ def fit_record(model, record: Record, free: Sequence[str], *,
         prob.space = _calibrate(prob.space, prob.full, z, r0, bounds)
         prob.failures = 0
     step = prob.difference_steps(z, r0) if free else np.zeros(0)
+    z, ok, msg, nfev, stages = _run_stages(prob, z, step, staged if free else None, max_nfev)
+    prob.stage = "uncertainty"
+    result = prob.result(z, step, ok, msg, nfev, stages)
+    return dataclasses.replace(result, reduction=reduction)
+
+
+def _run_stages(prob: _RecordProblem, z: np.ndarray, step: np.ndarray, staged: bool | None,
+                max_nfev: int) -> tuple[np.ndarray, bool, str, int, list[Stage]]:
+    """The least-squares stages of a record fit in turn (none when ``staged`` is None:
+    nothing is free); returns where they end, how, and what each did."""
     stages: list[Stage] = []
     nfev = 0
     ok, msg = True, "nothing free: the residuals of the start values"
-    for name, fun in prob.plan(staged) if free else []:
+    for name, fun in prob.plan(staged) if staged is not None else []:
+        prob.stage = name
         sol = _least_squares(fun, prob.space, z, step, max_nfev,
                              prob.many if fun == prob.full else None)
         z = sol.x
         nfev += int(sol.nfev)
         ok, msg = bool(sol.status > 0), str(sol.message)
         stages.append(Stage(name, _named(prob.space, z), float(sol.cost), int(sol.nfev), msg))
-    return prob.result(z, step, ok, msg, nfev, stages)
+    return z, ok, msg, nfev, stages
 
 
 class _RecordProblem:
@@ -870,7 +904,8 @@ class _RecordProblem:
     the residual vectors the least-squares stages minimise."""
 
     def __init__(self, model, record: Record, free: Sequence[str], params: dict[str, float],
-                 bounds, probes, weights, rtol: float, atol: float | None):
+                 bounds, probes, weights, rtol: float, atol: float | None,
+                 say: Callable[[str], None] | None = None):
         self.model, self.params, self.rtol = model, params, rtol
         self.names = _probes_of(model, record, probes)
         self.space = _space(model, free, params, bounds)
@@ -882,6 +917,8 @@ class _RecordProblem:
         self.t = np.asarray(record.t, float)
         self.atol = atol if atol is not None else model.netlist.analysis.atol
         self.failures = 0
+        self.say = say
+        self.stage, self.runs = "start", 0
         self.W = smoothing_windows(self.t, self.data)
         self.slow_data = [slow_features(self.W, x) for x in self.data]
 
@@ -889,7 +926,14 @@ class _RecordProblem:
         return {**self.params,
                 **dict(zip(self.space.names, self.space.theta(z).tolist(), strict=True))}
 
+    def tell(self, r: np.ndarray) -> np.ndarray:
+        """Report the simulations so far and the cost of the residual ``r`` (returned)."""
+        if self.say is not None:
+            self.say(f"{self.stage}: {self.runs} simulations, cost {0.5 * float(r @ r):.6g}")
+        return r
+
     def simulate(self, z: np.ndarray, rtol: float | None = None):
+        self.runs += 1
         try:
             res = self.model.simulate(stop=float(self.t[-1]), params=self.overrides(z),
                                       t_eval=self.t, rtol=rtol or self.rtol, atol=self.atol)
@@ -907,6 +951,7 @@ class _RecordProblem:
         """``full`` at several points from one batched integration."""
         from circuitsim.solve.batch import simulate_batch
 
+        self.runs += len(zs)
         try:
             runs = simulate_batch(self.model, [self.overrides(z) for z in zs],
                                   stop=float(self.t[-1]), t_eval=self.t, rtol=self.rtol,
@@ -921,6 +966,7 @@ class _RecordProblem:
                 continue
             out.append(np.concatenate([(res[p] - x) / s for p, x, s in
                                        zip(self.names, self.data, self.spread, strict=True)]))
+        self.tell(out[0])
         return out
 
     def full(self, z: np.ndarray) -> np.ndarray:
@@ -928,16 +974,16 @@ class _RecordProblem:
         if ys is None:
             self.failures += 1
             return np.full(self.t.size * len(self.names), FAILED_PENALTY)
-        return np.concatenate([(y - x) / s for y, x, s in zip(ys, self.data, self.spread,
-                                                               strict=True)])
+        return self.tell(np.concatenate([(y - x) / s for y, x, s in
+                                         zip(ys, self.data, self.spread, strict=True)]))
 
     def slow(self, z: np.ndarray) -> np.ndarray:
         ys = self.waveforms(z)
         if ys is None:
             self.failures += 1
             return np.full(sum(d.size for d in self.slow_data), FAILED_PENALTY)
-        return np.concatenate([(slow_features(self.W, y) - d) / s for y, d, s in
-                               zip(ys, self.slow_data, self.spread, strict=True)])
+        return self.tell(np.concatenate([(slow_features(self.W, y) - d) / s for y, d, s in
+                                         zip(ys, self.slow_data, self.spread, strict=True)]))
 
     def difference_steps(self, z: np.ndarray, r0: np.ndarray) -> np.ndarray:
         """Finite-difference steps sized to the simulation's own noise: the same run at
@@ -1034,6 +1080,8 @@ def _result(model, space: _Space, z: np.ndarray, unc: _Uncertainty, kind: str, o
 def format_result(result: FitResult, title: str = "") -> str:
     """Human-readable summary: estimates ± standard errors, correlations, residuals."""
     lines = [title] if title else []
+    if result.reduction is not None and result.reduction.reduced:
+        lines.append(result.reduction.note())
     lines.append(f"fit of {len(result.free)} parameter(s) to {result.kind}: "
                  f"{'converged' if result.success else 'NOT converged'} ({result.nfev} "
                  f"evaluations; stages: {', '.join(s.name for s in result.stages) or '-'})")
