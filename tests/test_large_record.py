@@ -2,9 +2,10 @@
 (issue 16: a 1-million-row record fits and diagnoses, with progress, in memory a small
 multiple of the data).
 
-The reference is an independent closed form: the DC motor (tests/data/dc_motor_sine.yaml) is
-linear, x' = A x + B V(t) with x = (i, w) and V = 6 V + 6 V sin(2 pi 5 Hz t) from rest, so its
-response is a constant, a sinusoid and a matrix exponential -- no integrator involved.
+The reference is an independent closed form (``reference.dc_motor_sine``): the DC motor of
+tests/data/dc_motor_sine.yaml is linear, x' = A x + B V(t) with x = (i, w) and V = 6 V + 6 V
+sin(2 pi 5 Hz t) from rest, so its response is a constant, a sinusoid and a matrix
+exponential -- no integrator involved.
 """
 
 from __future__ import annotations
@@ -23,26 +24,16 @@ from circuitsim.loop.record import Record
 from circuitsim.loop.reduce import WORK_ROWS, reduce_record
 
 from conftest import HERE
+from reference import dc_motor_sine
 
 MOTOR = HERE / "data" / "dc_motor_sine.yaml"
 TRUE = {"R": 1.0, "L": 1e-3, "k": 0.05, "J": 1e-5, "b": 1e-5}
 NOISE = {"i": 2e-3, "w": 0.2}  # [A], [rad/s], white
 
 
-def motor_response(t: np.ndarray, R: float = 1.0, L: float = 1e-3, k: float = 0.05,
-                   J: float = 1e-5, b: float = 1e-5) -> np.ndarray:
-    """(i [A], w [rad/s]) of the motor from rest under 6 V + 6 V sin(2 pi 5 Hz t)."""
-    A = np.array([[-R / L, -k / L], [k / J, -b / J]])
-    B = np.array([1 / L, 0.0])
-    omega = 2 * np.pi * 5.0
-    steady = -np.linalg.solve(A, B) * 6.0
-    g = np.linalg.solve(1j * omega * np.eye(2) - A, B) * 6.0  # response to 6 e^{j omega t}
-    lam, V = np.linalg.eig(A)
-    c = np.linalg.solve(V, -(steady + g.imag))  # the transient that starts it from rest
-    out = steady[:, None] + (g[:, None] * np.exp(1j * omega * t)[None]).imag
-    for m in range(2):
-        out += (V[:, m:m + 1] * (c[m] * np.exp(lam[m] * t))[None]).real
-    return out
+def motor_response(t: np.ndarray) -> np.ndarray:
+    """(i [A], w [rad/s]) of the motor of MOTOR, by the closed form."""
+    return dc_motor_sine(t, **TRUE)
 
 
 def motor_record(rows: int, seed: int = 0) -> Record:
