@@ -100,7 +100,8 @@ def _run_diagnosis(args, net, model, free, overrides, say):
                                  params=overrides, progress=say)
     inputs = [t.label.split(":")[-1] for c in net.components for t in c.tables]
     inputs += [s.strip() for s in args.inputs.split(",") if s.strip()]
-    record = load_record(args.data, model.probe_names, inputs=inputs, time=args.time)
+    record = load_record(args.data, model.probe_names, inputs=inputs, time=args.time,
+                         units=model.meta["units"])
     probes = [s.strip() for item in args.probes or [] for s in item.split(",") if s.strip()]
     check_columns(probes, record.names, args.data)
     return diagnose(net, record, free, probes=probes or None, max_effects=args.max_effects,

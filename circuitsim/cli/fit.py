@@ -75,7 +75,8 @@ def cmd_fit(args) -> int:
         warnings.simplefilter("always")
         if bar is not None:
             bar(f"reading {args.data}")
-        data = load_data(args.data, model.probe_names, inputs=inputs, time=args.time)
+        data = load_data(args.data, model.probe_names, inputs=inputs, time=args.time,
+                         units=model.meta["units"])
         if isinstance(data, FeatureSet):
             if probes or args.single_stage or args.full_record:
                 raise FitError("--probes, --single-stage and --full-record apply to a CSV "
