@@ -60,7 +60,8 @@ def run(verb: str, data: Path, cache: str) -> dict:
     got = json.loads(out.stdout.strip().splitlines()[-1])
     got["report"] = "\n".join(line for line in out.stdout.splitlines()
                               if line.startswith(("record:", "R ", "k ", "J ", "  R =",
-                                                  "  k =", "  J =")))
+                                                  "  k =", "  J =", "nothing", "something",
+                                                  "fit of")))
     return got
 
 
