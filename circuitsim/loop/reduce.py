@@ -119,7 +119,8 @@ def reduce_record(record: Record, probes: Sequence[str] | None = None, *,
                                  f"fewer than {2 * work_rows} rows")
     if progress is not None:
         progress(f"record: {n} rows; finding its content")
-    names = [p for p in (probes or record.names) if p in record.columns]
+    # a probe the record lacks is the caller's to report; the content of what is there decides
+    names = [p for p in (probes or ()) if p in record.columns] or list(record.names)
     # on the samples as they are: interpolation would colour the noise and pass for content
     content = max(_content(np.asarray(record[p], float), rate) for p in names)
     q = min(int(PASS * rate / (2 * MARGIN * content)), n // work_rows)
