@@ -780,16 +780,43 @@ def _spread(x: np.ndarray) -> float:
                                                                       1.0)
 
 
-def smoothing_windows(t: np.ndarray, columns: Sequence[np.ndarray]) -> np.ndarray:
-    """Row-normalised Hann weights (n_windows, n_samples) for the slow features of stage 1.
+def smoothing_windows(t: np.ndarray, columns: Sequence[np.ndarray]):
+    """Row-normalised Hann weights for the slow features of stage 1, as a sparse
+    (n_windows, n_samples) matrix (scipy ``csr_array``: each sample lies in about two
+    windows, so a long record costs two weights a sample, not one per window).
 
     Windows are at least ``WINDOW_PERIODS`` periods of the strongest ripple found in the
     second half of the record, and at least 1/20 of it; they overlap by half. Trapezoidal
     sample weights make the average right on a non-uniform grid.
     """
-    from circuitsim.signal import dominant_ripple
+    from scipy.sparse import csr_array
 
     duration = float(t[-1] - t[0])
+    length = _window_length(t, columns, duration)
+    hop = length / 2
+    centers = t[0] + length / 2 + hop * np.arange(int((duration - length) / hop + 1e-9) + 1)
+    dt = np.empty_like(t)
+    dt[1:-1] = (t[2:] - t[:-2]) / 2
+    dt[0], dt[-1] = (t[1] - t[0]) / 2, (t[-1] - t[-2]) / 2
+    rows, cols, vals = [], [], []
+    for k, c in enumerate(centers):
+        # the samples with |t - c| < length / 2, where the Hann weight is not zero
+        a = int(np.searchsorted(t, c - length / 2, side="right"))
+        b = int(np.searchsorted(t, c + length / 2, side="left"))
+        u = (t[a:b] - c) / length
+        w = 0.5 * (1 + np.cos(2 * np.pi * u)) * dt[a:b]
+        rows.append(np.full(b - a, k))
+        cols.append(np.arange(a, b))
+        vals.append(w / w.sum())
+    return csr_array((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+                     shape=(centers.size, t.size))
+
+
+def _window_length(t: np.ndarray, columns: Sequence[np.ndarray], duration: float) -> float:
+    """Length of the slow-feature windows [s]: WINDOW_PERIODS periods of the strongest
+    ripple of the record's second half, within [duration / 20, duration / 2]."""
+    from circuitsim.signal import dominant_ripple
+
     period = 0.0
     best = 0.0
     half = t >= t[0] + 0.5 * duration
@@ -801,18 +828,10 @@ def smoothing_windows(t: np.ndarray, columns: Sequence[np.ndarray]) -> np.ndarra
         rel = h.amplitude / _spread(x)
         if h.frequency > 0 and rel > best:
             best, period = rel, 1.0 / h.frequency
-    length = min(max(WINDOW_PERIODS * period, duration / 20), duration / 2)
-    hop = length / 2
-    centers = t[0] + length / 2 + hop * np.arange(int((duration - length) / hop + 1e-9) + 1)
-    dt = np.empty_like(t)
-    dt[1:-1] = (t[2:] - t[:-2]) / 2
-    dt[0], dt[-1] = (t[1] - t[0]) / 2, (t[-1] - t[-2]) / 2
-    u = (t[None, :] - centers[:, None]) / length
-    W = np.where(np.abs(u) < 0.5, 0.5 * (1 + np.cos(2 * np.pi * u)), 0.0) * dt[None, :]
-    return W / W.sum(axis=1, keepdims=True)
+    return min(max(WINDOW_PERIODS * period, duration / 20), duration / 2)
 
 
-def slow_features(W: np.ndarray, x: np.ndarray) -> np.ndarray:
+def slow_features(W, x: np.ndarray) -> np.ndarray:
     """Windowed means and ripple RMS of ``x`` (phase-insensitive summaries)."""
     m = W @ x
     rms = np.sqrt(np.maximum(W @ (x * x) - m * m, 0.0))
