@@ -23,7 +23,8 @@ def add_cli(sub) -> None:
                        "physical effect the model lacks")
     d.add_argument("netlist", help="netlist YAML file")
     d.add_argument("--allow-outside", action="store_true", help=ALLOW_HELP)
-    d.add_argument("data", help="CSV record: time + one column per probe [SI]")
+    d.add_argument("data", help="CSV record: time + one column per probe, SI or with the "
+                   "unit in brackets ('time [s],i [A]')")
     d.add_argument("--free", default="", help="declared free parameters, comma-separated")
     d.add_argument("--probe", "--probes", dest="probes", action="append", metavar="NAME[,NAME]",
                    help="probe columns to use (default: all)")

@@ -18,7 +18,8 @@ def add_cli(sub) -> None:
     """Register ``circuitsim fit`` on an argparse subparsers action."""
     f = sub.add_parser("fit", help="fit free parameters to a measured record or features",
                        description="Nonlinear least squares of free netlist parameters against "
-                       "a CSV record (time + one column per probe, SI) or a features YAML "
+                       "a CSV record (time + one column per probe, SI or with the unit in brackets: "
+                       "'time [s],i [A]') or a features YAML "
                        "(steady means, harmonic amplitude/frequency).")
     f.add_argument("netlist", help="netlist YAML file")
     f.add_argument("--allow-outside", action="store_true", help=ALLOW_HELP)
