@@ -80,9 +80,9 @@ class Reduction:
         if not self.reduced:
             return f"record: {self.rows} rows, all used ({self.reason})"
         grid = ", resampled onto a uniform grid first" if self.resampled else ""
-        return (f"record: {self.rows} rows reduced to {self.working_rows} for fitting (every "
-                f"{self.factor}th after an anti-alias filter flat to {self.passband:.4g} Hz"
-                f"{grid}): {self.reason}")
+        return (f"record: {self.rows} rows reduced to {self.working_rows} for fitting (one "
+                f"row in {self.factor}, after an anti-alias filter flat to "
+                f"{self.passband:.4g} Hz{grid}): {self.reason}")
 
     def as_dict(self) -> dict:
         return {"rows": self.rows, "working_rows": self.working_rows, "factor": self.factor,
@@ -130,7 +130,7 @@ def reduce_record(record: Record, probes: Sequence[str] | None = None, *,
                                  f"its content reaches {content:.4g} Hz of the {nyquist:.4g} "
                                  f"Hz it can hold: not oversampled")
     if progress is not None:
-        progress(f"record: filtering to every {q}th of {n} rows")
+        progress(f"record: filtering, then keeping one row in {q} of {n}")
     grid, resampled = _uniform_grid(t)
     out = {k: _decimate(np.interp(grid, t, v) if resampled else np.asarray(v, float), q)
            for k, v in record.columns.items()}
