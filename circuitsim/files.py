@@ -178,13 +178,29 @@ def read_rows(path: str | os.PathLike, error: RowError) -> tuple[list[str], list
     return [_UNIT_SUFFIX.sub("", h.strip()) for h in rows[0]], rows[1:]
 
 
+def split_unit(cell: str) -> tuple[str, str | None]:
+    """A header cell as (name, unit): ``'motor.i [A]'`` -> ``('motor.i', 'A')``, a cell
+    without brackets -> ``(cell, None)``; both stripped."""
+    cell = cell.strip()
+    m = _UNIT_SUFFIX.search(cell)
+    if m is None:
+        return cell, None
+    return cell[: m.start()].strip(), m.group(0).strip()[1:-1].strip()
+
+
 def read_header(path: str | os.PathLike, error: RowError) -> list[str]:
     """The header of a CSV file (stripped, units in brackets dropped; [] when the file holds
     no row), reading only its first lines. Raises ``error(...)`` as :func:`read_rows`."""
-    def first(reader) -> list[str]:
+    return [name for name, _ in read_header_units(path, error)]
+
+
+def read_header_units(path: str | os.PathLike, error: RowError) -> list[tuple[str, str | None]]:
+    """The header of a CSV file as (name, unit or None) per column (:func:`split_unit`;
+    [] when the file holds no row). Raises ``error(...)`` as :func:`read_rows`."""
+    def first(reader) -> list[tuple[str, str | None]]:
         for row in reader:
             if any(c.strip() for c in row):
-                return [_UNIT_SUFFIX.sub("", h.strip()) for h in row]
+                return [split_unit(h) for h in row]
         return []
 
     return _csv_rows(path, error, first)

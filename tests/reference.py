@@ -14,7 +14,7 @@ Contents
 * ``fit_ripple`` -- offset + trend + sine fit (FFT peak, then variable projection);
   ``resample`` -- cubic-spline resampling onto a uniform grid.
 * Closed forms: ``rc_step``, ``rl_step``, ``rlc_series_step``, ``dc_motor_step``,
-  ``dc_motor_steady_speed``.
+  ``dc_motor_steady_speed``, ``dc_motor_sine`` (from rest under an offset sine).
 * ``errnorm`` -- tolerance-normalised maximum error.
 
 Model (Kim & Kim 2024, see shared/REFERENCE.md section 1)
@@ -45,6 +45,7 @@ from scipy.optimize import minimize_scalar
 
 __all__ = [
     "KIM_BASE",
+    "dc_motor_sine",
     "dc_motor_steady_speed",
     "dc_motor_step",
     "errnorm",
@@ -495,6 +496,27 @@ def rlc_series_step(
     w0 = 1.0 / math.sqrt(L * C)
     c, s = _exp_cos_sin(-alpha, (alpha - w0) * (alpha + w0), t)
     return V * (1.0 - (c + alpha * s)), V / L * s
+
+
+def dc_motor_sine(t: ArrayLike, R: float = 1.0, L: float = 1e-3, k: float = 0.05,
+                  J: float = 1e-5, b: float = 1e-5, V0: float = 6.0, Va: float = 6.0,
+                  f: float = 5.0) -> FloatArray:
+    """Current [A] and speed [rad/s] (rows of a (2, n) array) of a DC motor (``k_e = k_t =
+    k``) from rest under ``V0 + Va sin(2 pi f t)`` [V, Hz]: x' = A x + B V with x = (i, w)
+    is linear, so the response is a constant, a sinusoid and the matrix exponential that
+    starts it from rest. ``R`` [ohm], ``L`` [H], ``J`` [kg*m^2], ``b`` [N*m*s/rad]."""
+    t = np.asarray(t, dtype=float)
+    A = np.array([[-R / L, -k / L], [k / J, -b / J]])
+    B = np.array([1 / L, 0.0])
+    omega = 2 * np.pi * f
+    steady = -np.linalg.solve(A, B) * V0
+    g = np.linalg.solve(1j * omega * np.eye(2) - A, B) * Va  # response to Va e^{j omega t}
+    lam, vec = np.linalg.eig(A)
+    c = np.linalg.solve(vec, -(steady + g.imag))  # the transient that starts it from rest
+    out = steady[:, None] + (g[:, None] * np.exp(1j * omega * t)[None]).imag
+    for m in range(2):
+        out += (vec[:, m:m + 1] * (c[m] * np.exp(lam[m] * t))[None]).real
+    return out
 
 
 def dc_motor_steady_speed(V: float, R: float, k: float, b: float) -> float:

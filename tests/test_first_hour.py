@@ -289,3 +289,24 @@ def test_progress_bar_on_a_terminal_only(tmp_path):
                             "--no-files"], capture_output=True, text=True, timeout=120,
                            check=False)
     assert piped.returncode == 0 and "simulated:" not in piped.stderr
+
+
+def test_fit_shows_progress_on_a_terminal_only(tmp_path):
+    """`fit` draws a status bar (the stage, simulations so far and the cost) on a terminal;
+    a pipe gets the result alone."""
+    import subprocess
+    import sys
+
+    t = np.linspace(0.0, 5e-3, 501)
+    v = 1 - np.exp(-t / 1.1e-3) + np.random.default_rng(0).normal(0, 1e-3, t.size)
+    data = tmp_path / "rc.csv"
+    data.write_text("time,v_out\n" + "".join(f"{a:.17g},{b:.17g}\n" for a, b in zip(t, v,
+                                                                                 strict=True)))
+    args = ["fit", str(RC), str(data), "--free", "R"]
+    code, out = _run_in_pty(args)
+    assert code == 0 and b"fit: " in out and b"simulations, cost" in out
+    assert b"R  " in out  # the result table
+    piped = subprocess.run([sys.executable, "-m", "circuitsim.cli", *args],
+                           capture_output=True, text=True, timeout=120, check=False)
+    assert piped.returncode == 0 and "simulations" not in piped.stderr
+    assert "estimate" in piped.stdout

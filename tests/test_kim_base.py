@@ -38,9 +38,11 @@ def test_cli_run_reproduces_the_paper(capsys, tmp_path, monkeypatch):
     assert current["mean"] == pytest.approx(1.36649, abs=1e-4)
     assert current["ripple"]["frequency"] == pytest.approx(825.70, abs=0.05)
     assert current["ripple"]["amplitude"] == pytest.approx(0.38064, abs=0.0005)
-    # files were written: CSV with the probes, a PNG
+    # files were written: CSV with the probes and their units (issue 16), a PNG
     header = (tmp_path / "base.csv").read_text().splitlines()[0]
-    assert header.split(",") == ["time", *out["probes"]]
+    assert header.split(",") == ["time [s]", *(f"{n} [{p['unit']}]"
+                                               for n, p in out["probes"].items())]
+    assert "speed [rad/s]" in header and "i_total [A]" in header
     assert (tmp_path / "base.png").read_bytes()[:4] == b"\x89PNG"
 
 

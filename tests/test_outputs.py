@@ -9,6 +9,7 @@ folder, SIGINT sent to a running command.
 from __future__ import annotations
 
 import csv
+import json
 import os
 import signal
 import stat
@@ -71,7 +72,7 @@ def test_a_symlink_output_is_written_through(rc_copy, tmp_path):
     assert main(["run", str(rc_copy), "--out", str(link), "--plot",
                  str(tmp_path / "p.png")]) == 0
     assert link.is_symlink() and os.readlink(link) == str(target)
-    assert target.read_text().startswith("time,v_out,i\n")
+    assert target.read_text().startswith("time [s],v_out [V],i [A]\n")
 
 
 def test_a_device_output_is_written_not_replaced(rc_copy, tmp_path):
@@ -166,8 +167,7 @@ def test_run_csv_has_units_and_honours_probe_after_decimate(rc_copy, tmp_path):
     v = 1 - exp(-t/RC) (RC = 1 ms) to the integrator's tolerance."""
     out = tmp_path / "v.csv"
     assert main(["run", str(rc_copy), "--out", str(out), "--plot", str(tmp_path / "v.png"),
-                 "--probe", "v_out", "--after", "2ms", "--decimate", "4",
-                 "--header-units"]) == 0
+                 "--probe", "v_out", "--after", "2ms", "--decimate", "4"]) == 0
     with open(out, newline="") as fh:
         rows = list(csv.reader(fh))
     assert rows[0] == ["time [s]", "v_out [V]"]
@@ -183,10 +183,62 @@ def test_run_csv_reads_back_as_a_record(rc_copy, tmp_path):
 
     out = tmp_path / "v.csv"
     assert main(["run", str(rc_copy), "--out", str(out), "--plot",
-                 str(tmp_path / "v.png"), "--header-units"]) == 0
+                 str(tmp_path / "v.png")]) == 0
     assert out.read_text().startswith("time [s],v_out [V],i [A]\n")
-    rec = load_record(out, ["v_out", "i"])
+    rec = load_record(out, ["v_out", "i"], units={"v_out": "V", "i": "A"})
     assert set(rec.names) == {"v_out", "i"} and rec.t[-1] == pytest.approx(5e-3)
+    plain = tmp_path / "plain.csv"
+    assert main(["run", str(rc_copy), "--out", str(plain), "--no-header-units",
+                 "--plot", str(tmp_path / "p.png")]) == 0
+    assert plain.read_text().startswith("time,v_out,i\n")
+    again = load_record(plain, ["v_out", "i"], units={"v_out": "V", "i": "A"})
+    np.testing.assert_array_equal(again["v_out"], rec["v_out"])
+
+
+def _record_csv(path, header: str, scale: float = 1.0, t_scale: float = 1.0) -> None:
+    """The RC step v = 1 - exp(-t / 1 ms) over 5 ms, written in the units of ``header``."""
+    t = np.linspace(0.0, 5e-3, 101)
+    v = 1 - np.exp(-t / 1e-3)
+    path.write_text(header + "\n" + "".join(f"{a * t_scale!r},{b * scale!r}\n"
+                                            for a, b in zip(t.tolist(), v.tolist(),
+                                                            strict=True)))
+
+
+def test_a_unit_in_the_header_is_checked_and_converted(tmp_path):
+    """'v_out [mV]' and 'time [ms]' are read as SI; a unit of another dimension, or one pint
+    does not know, is refused naming the file, the column and the probe's unit."""
+    from circuitsim.loop.record import DataError, load_record
+
+    units = {"v_out": "V", "i": "A"}
+    path = tmp_path / "r.csv"
+    _record_csv(path, "time [ms],v_out [mV]", scale=1e3, t_scale=1e3)
+    rec = load_record(path, ["v_out", "i"], units=units)
+    np.testing.assert_allclose(rec.t, np.linspace(0.0, 5e-3, 101), rtol=1e-12)
+    np.testing.assert_allclose(rec["v_out"], 1 - np.exp(-rec.t / 1e-3), rtol=1e-12, atol=1e-15)
+    _record_csv(path, "time,v_out [A]")
+    with pytest.raises(DataError, match=r"r\.csv:1: column 'v_out \[A\]'.*probe 'v_out' is in V"):
+        load_record(path, ["v_out", "i"], units=units)
+    _record_csv(path, "time [V],v_out")
+    with pytest.raises(DataError, match=r"column 'time \[V\]'.*time column is in s"):
+        load_record(path, ["v_out", "i"], units=units)
+    _record_csv(path, "time,v_out [bananas]")
+    with pytest.raises(DataError, match=r"unknown unit"):
+        load_record(path, ["v_out", "i"], units=units)
+
+
+def test_fit_reads_a_plain_user_csv_and_a_csv_with_units_alike(rc_copy, tmp_path, capsys):
+    """`fit` on the same RC record written as 'time,v_out' and as 'time [ms],v_out [mV]'
+    gives the same estimate (R = 1 kohm: the record is the netlist's own closed form)."""
+    out = {}
+    for name, header, scale in (("plain", "time,v_out", 1.0),
+                                ("units", "time [ms],v_out [mV]", 1e3)):
+        path = tmp_path / f"{name}.csv"
+        _record_csv(path, header, scale=scale, t_scale=scale)
+        assert main(["fit", str(rc_copy), str(path), "--free", "R", "--set", "R=1.2k",
+                     "--json"]) == 0
+        out[name] = json.loads(capsys.readouterr().out)["parameters"]["R"]["estimate"]
+    assert out["plain"] == pytest.approx(1000.0, rel=1e-5)
+    assert out["units"] == pytest.approx(out["plain"], rel=1e-9)
 
 
 def test_to_dataframe(rc_copy):

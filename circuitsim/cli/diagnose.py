@@ -23,7 +23,8 @@ def add_cli(sub) -> None:
                        "physical effect the model lacks")
     d.add_argument("netlist", help="netlist YAML file")
     d.add_argument("--allow-outside", action="store_true", help=ALLOW_HELP)
-    d.add_argument("data", help="CSV record: time + one column per probe [SI]")
+    d.add_argument("data", help="CSV record: time + one column per probe, SI or with the "
+                   "unit in brackets ('time [s],i [A]')")
     d.add_argument("--free", default="", help="declared free parameters, comma-separated")
     d.add_argument("--probe", "--probes", dest="probes", action="append", metavar="NAME[,NAME]",
                    help="probe columns to use (default: all)")
@@ -38,6 +39,10 @@ def add_cli(sub) -> None:
     d.add_argument("--set", action="append", metavar="NAME=VALUE",
                    help="override a parameter (units checked); for a declared free one, its "
                         "start value. The written netlist carries the value")
+    d.add_argument("--full-record", action="store_true",
+                   help="use every row, even of a long record sampled far faster than its "
+                        "content needs (by default such a record is filtered and reduced to a "
+                        "working resolution, and the report says how)")
     d.add_argument("--json", action="store_true", help="print the report (as --report) as JSON")
     d.add_argument("--quiet", action="store_true", help="no progress messages")
     d.set_defaults(func=cmd_diagnose)
@@ -96,14 +101,17 @@ def _run_diagnosis(args, net, model, free, overrides, say):
                                  params=overrides, progress=say)
     inputs = [t.label.split(":")[-1] for c in net.components for t in c.tables]
     inputs += [s.strip() for s in args.inputs.split(",") if s.strip()]
-    record = load_record(args.data, model.probe_names, inputs=inputs, time=args.time)
+    record = load_record(args.data, model.probe_names, inputs=inputs, time=args.time,
+                         units=model.meta["units"])
     probes = [s.strip() for item in args.probes or [] for s in item.split(",") if s.strip()]
     check_columns(probes, record.names, args.data)
     return diagnose(net, record, free, probes=probes or None, max_effects=args.max_effects,
-                    params=overrides, progress=say)
+                    params=overrides, progress=say, reduce=not args.full_record)
 
 
 def _print(diag) -> None:
+    if diag.reduction is not None and diag.reduction.reduced:
+        print(diag.reduction.note())
     print(diag.summary())
     for a in diag.effects:
         print(f"  + {a.effect} on {a.target}: " + ", ".join(

@@ -18,7 +18,8 @@ def add_cli(sub) -> None:
     """Register ``circuitsim fit`` on an argparse subparsers action."""
     f = sub.add_parser("fit", help="fit free parameters to a measured record or features",
                        description="Nonlinear least squares of free netlist parameters against "
-                       "a CSV record (time + one column per probe, SI) or a features YAML "
+                       "a CSV record (time + one column per probe, SI or with the unit in brackets: "
+                       "'time [s],i [A]') or a features YAML "
                        "(steady means, harmonic amplitude/frequency).")
     f.add_argument("netlist", help="netlist YAML file")
     f.add_argument("--allow-outside", action="store_true", help=ALLOW_HELP)
@@ -40,8 +41,12 @@ def add_cli(sub) -> None:
                    help="record: other columns that are not probes (measured inputs, ignored "
                         "unless a table source reads them)")
     f.add_argument("--rtol", type=float, default=1e-8, help="record: integrator rtol")
+    f.add_argument("--full-record", action="store_true",
+                   help="record: fit every row, even of a long record sampled far faster than "
+                        "its content needs (by default such a record is filtered and reduced "
+                        "to a working resolution, and the report says how)")
     f.add_argument("--json", action="store_true", help="print the report as JSON")
-    f.add_argument("--quiet", action="store_true", help="no progress line")
+    f.add_argument("--quiet", action="store_true", help="no progress bar")
     f.set_defaults(func=cmd_fit)
 
 
@@ -63,24 +68,27 @@ def cmd_fit(args) -> int:
         model = compile_model(net)
     inputs = [t.label.split(":", 1)[1] for c in net.components for t in c.tables]
     inputs += _split(args.inputs)
-    data = load_data(args.data, model.probe_names, inputs=inputs, time=args.time)
     overrides = _parse_sets(model, args.set or [])
     free = _split(args.free)
     probes = _split(",".join(args.probes or []))
     with warnings.catch_warnings(record=True) as fit_caught, \
             status_line("fit", quiet=args.quiet or args.json) as bar:
         warnings.simplefilter("always")
+        if bar is not None:
+            bar(f"reading {args.data}")
+        data = load_data(args.data, model.probe_names, inputs=inputs, time=args.time,
+                         units=model.meta["units"])
         if isinstance(data, FeatureSet):
-            if probes or args.single_stage:
-                raise FitError("--probes and --single-stage apply to a CSV record, not to "
-                               "features")
+            if probes or args.single_stage or args.full_record:
+                raise FitError("--probes, --single-stage and --full-record apply to a CSV "
+                               "record, not to features")
             result = fit_features(model, data, free, params=overrides, harmonic=args.harmonic,
-                                  **_progress_kw(fit_features, bar))
+                                  progress=bar)
         else:
             check_columns(probes, data.names, args.data)
             result = fit_record(model, data, free, params=overrides, probes=probes or None,
                                 staged=not args.single_stage, rtol=args.rtol,
-                                **_progress_kw(fit_record, bar))
+                                reduce=not args.full_record, progress=bar)
     physics = [str(w.message) for w in caught]
     report = {"netlist": args.netlist, "data": args.data, **result.as_dict(),
               "model_warnings": physics}
@@ -96,16 +104,6 @@ def cmd_fit(args) -> int:
             print(f"report: {args.report}")
     del fit_caught  # the result carries its warnings; the report prints them
     return 0 if result.success else 1
-
-
-def _progress_kw(fn, bar) -> dict:
-    """``progress=bar`` for a fit entry point that takes a progress callback (a message per
-    step), nothing for one that does not yet: the bar then shows the elapsed time only."""
-    import inspect
-
-    if bar is None or "progress" not in inspect.signature(fn).parameters:
-        return {}
-    return {"progress": bar}
 
 
 def check_columns(probes: list[str], columns, data: str) -> None:

@@ -167,16 +167,14 @@ def _check_names(model, names: list[str]) -> list[str]:
 
 
 def write_run_csv(res, path: str, names: list[str], after: float = 0.0,
-                  decimate: int = 1, units: bool = False) -> None:
+                  decimate: int = 1, units: bool = True) -> None:
     """Time and the named series, atomically; only the points at or after ``after`` [s],
     every ``decimate``-th of them. ``units``: the header says them (``v_out [V]``; the
-    readers of records and tables drop the brackets)."""
+    record reader checks them against the probes, the table reader drops them)."""
     import numpy as np
 
     keep = np.flatnonzero(res.t >= after)[::decimate]
-    known = res.model.meta["units"] if units else {}
-    header = ["time [s]" if units else "time"] + \
-        [f"{n} [{known[n]}]" if known.get(n) else n for n in names]
+    header = res.csv_header(names, units)
     data = np.column_stack([res.t[keep]] + [res[n][keep] for n in names])
 
     def write(tmp: str) -> None:
@@ -545,8 +543,9 @@ def _add_run(sub) -> None:
                         "keeps the earlier points out of memory")
     r.add_argument("--decimate", type=int, default=1, metavar="N",
                    help="write every N-th point (the summary uses all of them)")
-    r.add_argument("--header-units", action="store_true",
-                   help="units in the CSV header ('v_out [V]'); fit and diagnose read them")
+    r.add_argument("--header-units", action=argparse.BooleanOptionalAction, default=True,
+                   help="units in the CSV header, 'time [s]', 'v_out [V]' (default; fit and "
+                        "diagnose read them); --no-header-units writes the names alone")
     r.add_argument("--json", action="store_true", help="print one JSON object")
     r.add_argument("--quiet", action="store_true", help="no progress bar")
     r.add_argument("--window", type=float, default=0.2,

@@ -90,7 +90,7 @@ def status_line(desc: str, quiet: bool = False) -> Iterator[Callable[[str], None
     from tqdm import tqdm
 
     with tqdm(desc=desc, unit="step", file=sys.stderr, ncols=_width(), leave=False,
-              bar_format="{desc}: {n} steps [{elapsed}] {postfix}") as bar:
+              bar_format="{desc}: {n} steps [{elapsed}] {postfix}") as bar, _ticking(bar):
         def update(message: str) -> None:
             bar.set_postfix_str(str(message)[:60], refresh=False)
             bar.update(1)

@@ -34,6 +34,7 @@ Top-level imports stay light (numpy only): the CLI imports this module on every 
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import warnings
 from collections.abc import Callable, Mapping, Sequence
@@ -111,6 +112,8 @@ class FitResult:
     params : every override of the fitted model (fixed ones and the estimates) [SI]:
         ``model.simulate(params=fit.params)`` reproduces the fit.
     sim : the fitted transient on the record's grid (record), else None.
+    reduction : what ``loop.reduce.reduce_record`` did to the record (record), else None;
+        residuals, errors and ``sim`` are on the working record it produced.
     predicted : model values of the features at the estimate (features), else empty.
     stages : the least-squares stages run, in order.
     """
@@ -136,6 +139,7 @@ class FitResult:
     measured: dict[str, float] = field(default_factory=dict)
     sigma: dict[str, float | None] = field(default_factory=dict)
     units: dict[str, str] = field(default_factory=dict)
+    reduction: Any = None
 
     @property
     def error(self) -> float:
@@ -174,6 +178,8 @@ class FitResult:
         else:
             out["rms_residual"] = {k: float(np.sqrt(np.mean(np.asarray(v) ** 2)))
                                    for k, v in self.residuals.items()}
+            if self.reduction is not None:
+                out["record"] = self.reduction.as_dict()
         return out
 
 
@@ -660,7 +666,8 @@ def predict_features(model, features: FeatureSet, params: Mapping[str, float] | 
 def fit_features(model, features: FeatureSet, free: Sequence[str], *,
                  params: Mapping[str, float] | None = None,
                  bounds: Mapping[str, tuple[float, float]] | None = None,
-                 harmonic: str = "small-signal", max_nfev: int = 200) -> FitResult:
+                 harmonic: str = "small-signal", max_nfev: int = 200,
+                 progress: Callable[[str], None] | None = None) -> FitResult:
     """Fit ``free`` parameters of a compiled model to measured features.
 
     Parameters
@@ -674,6 +681,7 @@ def fit_features(model, features: FeatureSet, free: Sequence[str], *,
         sign kept.
     harmonic : 'small-signal' (default) or 'pss' (see ``predict_features``).
     max_nfev : largest number of model evaluations (Jacobian evaluations not counted).
+    progress : called with a line of text after each evaluation of the model.
 
     Returns
     -------
@@ -693,7 +701,8 @@ def fit_features(model, features: FeatureSet, free: Sequence[str], *,
     def overrides(z: np.ndarray) -> dict[str, float]:
         return {**params, **dict(zip(space.names, space.theta(z).tolist(), strict=True))}
 
-    fun = _feature_residual(model, features, overrides, harmonic, vals, w, failures)
+    fun = _feature_residual(model, features, overrides, harmonic, vals, w, failures,
+                            progress)
     z0 = np.zeros(len(free))
     r0 = fun(z0)
     if failures[0]:
@@ -717,17 +726,23 @@ def fit_features(model, features: FeatureSet, free: Sequence[str], *,
 
 
 def _feature_residual(model, features: FeatureSet, overrides, harmonic: str,
-                      vals: np.ndarray, w: np.ndarray, failures: list[int]):
+                      vals: np.ndarray, w: np.ndarray, failures: list[int],
+                      progress: Callable[[str], None] | None = None):
     """The features' residual in sigmas at a parameter vector z (a failed evaluation counts
     in ``failures`` and returns the penalty)."""
+    calls = [0]
 
     def fun(z: np.ndarray) -> np.ndarray:
+        calls[0] += 1
         try:
             pred = predict_features(model, features, overrides(z), harmonic)
         except (SolverError, ParameterError, np.linalg.LinAlgError):
             failures[0] += 1
             return np.full(vals.size, FAILED_PENALTY)
-        return (pred - vals) / w
+        r = (pred - vals) / w
+        if progress is not None:
+            progress(f"features: {calls[0]} evaluations, cost {0.5 * float(r @ r):.6g}")
+        return r
 
     return fun
 
@@ -782,16 +797,43 @@ def _spread(x: np.ndarray) -> float:
                                                                       1.0)
 
 
-def smoothing_windows(t: np.ndarray, columns: Sequence[np.ndarray]) -> np.ndarray:
-    """Row-normalised Hann weights (n_windows, n_samples) for the slow features of stage 1.
+def smoothing_windows(t: np.ndarray, columns: Sequence[np.ndarray]):
+    """Row-normalised Hann weights for the slow features of stage 1, as a sparse
+    (n_windows, n_samples) matrix (scipy ``csr_array``: each sample lies in about two
+    windows, so a long record costs two weights a sample, not one per window).
 
     Windows are at least ``WINDOW_PERIODS`` periods of the strongest ripple found in the
     second half of the record, and at least 1/20 of it; they overlap by half. Trapezoidal
     sample weights make the average right on a non-uniform grid.
     """
-    from circuitsim.signal import dominant_ripple
+    from scipy.sparse import csr_array
 
     duration = float(t[-1] - t[0])
+    length = _window_length(t, columns, duration)
+    hop = length / 2
+    centers = t[0] + length / 2 + hop * np.arange(int((duration - length) / hop + 1e-9) + 1)
+    dt = np.empty_like(t)
+    dt[1:-1] = (t[2:] - t[:-2]) / 2
+    dt[0], dt[-1] = (t[1] - t[0]) / 2, (t[-1] - t[-2]) / 2
+    rows, cols, vals = [], [], []
+    for k, c in enumerate(centers):
+        # the samples with |t - c| < length / 2, where the Hann weight is not zero
+        a = int(np.searchsorted(t, c - length / 2, side="right"))
+        b = int(np.searchsorted(t, c + length / 2, side="left"))
+        u = (t[a:b] - c) / length
+        w = 0.5 * (1 + np.cos(2 * np.pi * u)) * dt[a:b]
+        rows.append(np.full(b - a, k))
+        cols.append(np.arange(a, b))
+        vals.append(w / w.sum())
+    return csr_array((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+                     shape=(centers.size, t.size))
+
+
+def _window_length(t: np.ndarray, columns: Sequence[np.ndarray], duration: float) -> float:
+    """Length of the slow-feature windows [s]: WINDOW_PERIODS periods of the strongest
+    ripple of the record's second half, within [duration / 20, duration / 2]."""
+    from circuitsim.signal import dominant_ripple
+
     period = 0.0
     best = 0.0
     half = t >= t[0] + 0.5 * duration
@@ -803,18 +845,10 @@ def smoothing_windows(t: np.ndarray, columns: Sequence[np.ndarray]) -> np.ndarra
         rel = h.amplitude / _spread(x)
         if h.frequency > 0 and rel > best:
             best, period = rel, 1.0 / h.frequency
-    length = min(max(WINDOW_PERIODS * period, duration / 20), duration / 2)
-    hop = length / 2
-    centers = t[0] + length / 2 + hop * np.arange(int((duration - length) / hop + 1e-9) + 1)
-    dt = np.empty_like(t)
-    dt[1:-1] = (t[2:] - t[:-2]) / 2
-    dt[0], dt[-1] = (t[1] - t[0]) / 2, (t[-1] - t[-2]) / 2
-    u = (t[None, :] - centers[:, None]) / length
-    W = np.where(np.abs(u) < 0.5, 0.5 * (1 + np.cos(2 * np.pi * u)), 0.0) * dt[None, :]
-    return W / W.sum(axis=1, keepdims=True)
+    return min(max(WINDOW_PERIODS * period, duration / 20), duration / 2)
 
 
-def slow_features(W: np.ndarray, x: np.ndarray) -> np.ndarray:
+def slow_features(W, x: np.ndarray) -> np.ndarray:
     """Windowed means and ripple RMS of ``x`` (phase-insensitive summaries)."""
     m = W @ x
     rms = np.sqrt(np.maximum(W @ (x * x) - m * m, 0.0))
@@ -827,7 +861,8 @@ def fit_record(model, record: Record, free: Sequence[str], *,
                probes: Sequence[str] | None = None, staged: bool = True,
                rtol: float = 1e-8, atol: float | None = None,
                max_nfev: int = 100, weights: Mapping[str, float] | None = None,
-               tol: float = 1e-8) -> FitResult:
+               tol: float = 1e-8, reduce: bool = True,
+               progress: Callable[[str], None] | None = None) -> FitResult:
     """Fit ``free`` parameters of a compiled model to a measured record (output error).
 
     The model is simulated from rest on the record's time grid and compared with each probe
@@ -849,19 +884,25 @@ def fit_record(model, record: Record, free: Sequence[str], *,
     staged : slow features first, then the waveform (default), or the waveform only.
     rtol, atol : integrator tolerances for the fit's simulations; tighter than a plain run
         because finite differences of the parameters must see the model, not the solver.
-    max_nfev : largest number of simulations per stage (Jacobian evaluations not counted).
+    max_nfev, tol : largest number of simulations per stage (Jacobian evaluations not
+        counted); relative change of the cost and of the parameters that ends a stage [-].
     weights : per probe, the scale its residual is divided by [probe unit] (its noise level,
-        when known); default: the probe's spread.
-    tol : relative change of the cost and of the parameters that ends a stage [-].
+        when known; on a reduced record, the working record's); default: the probe's spread.
+    reduce : first bring a long, oversampled record to the resolution its content needs
+        (``loop.reduce.reduce_record``). progress : called with a line at each simulation.
 
     Returns
     -------
     FitResult
         With ``kind='record'``, ``sim`` the fitted transient, ``residuals[probe]`` = measured -
-        model on the record's grid, ``errors[probe]`` the NRMSE.
+        model on the (working) record's grid, ``errors[probe]`` the NRMSE, ``reduction``.
     """
+    from circuitsim.loop.reduce import reduce_record
+
+    record, reduction = reduce_record(record, _probes_of(model, record, probes),
+                                      progress=progress) if reduce else (record, None)
     prob = _RecordProblem(model, record, free, dict(params or {}), bounds, probes, weights,
-                          rtol, atol)
+                          rtol, atol, progress)
     z = np.zeros(len(free))
     r0 = prob.full(z)
     if prob.failures:
@@ -871,17 +912,29 @@ def fit_record(model, record: Record, free: Sequence[str], *,
         prob.space = _calibrate(prob.space, prob.full, z, r0, bounds)
         prob.failures = 0
     step = prob.difference_steps(z, r0) if free else np.zeros(0)
+    z, ok, msg, nfev, stages = _run_stages(prob, z, step, staged if free else None, max_nfev,
+                                           tol)
+    prob.stage = "uncertainty"
+    result = prob.result(z, step, ok, msg, nfev, stages)
+    return dataclasses.replace(result, reduction=reduction)
+
+
+def _run_stages(prob: _RecordProblem, z: np.ndarray, step: np.ndarray, staged: bool | None,
+                max_nfev: int, tol: float) -> tuple[np.ndarray, bool, str, int, list[Stage]]:
+    """The least-squares stages of a record fit in turn (none when ``staged`` is None:
+    nothing is free); returns where they end, how, and what each did."""
     stages: list[Stage] = []
     nfev = 0
     ok, msg = True, "nothing free: the residuals of the start values"
-    for name, fun in prob.plan(staged) if free else []:
+    for name, fun in prob.plan(staged) if staged is not None else []:
+        prob.stage = name
         stage_tol = tol if fun == prob.full else max(tol, SLOW_STAGE_TOL)
         sol = _least_squares(fun, prob.space, z, step, max_nfev, prob.batched(fun), stage_tol)
         z = sol.x
         nfev += int(sol.nfev)
         ok, msg = bool(sol.status > 0), str(sol.message)
         stages.append(Stage(name, _named(prob.space, z), float(sol.cost), int(sol.nfev), msg))
-    return prob.result(z, step, ok, msg, nfev, stages)
+    return z, ok, msg, nfev, stages
 
 
 class _RecordProblem:
@@ -889,7 +942,8 @@ class _RecordProblem:
     the residual vectors the least-squares stages minimise."""
 
     def __init__(self, model, record: Record, free: Sequence[str], params: dict[str, float],
-                 bounds, probes, weights, rtol: float, atol: float | None):
+                 bounds, probes, weights, rtol: float, atol: float | None,
+                 say: Callable[[str], None] | None = None):
         self.model, self.params, self.rtol = model, params, rtol
         self.names = _probes_of(model, record, probes)
         self.space = _space(model, free, params, bounds)
@@ -901,6 +955,8 @@ class _RecordProblem:
         self.t = np.asarray(record.t, float)
         self.atol = atol if atol is not None else model.netlist.analysis.atol
         self.failures = 0
+        self.say = say
+        self.stage, self.runs = "start", 0
         self.W = smoothing_windows(self.t, self.data)
         self.memo: dict[bytes, Any] = {}
         self.slow_data = [slow_features(self.W, x) for x in self.data]
@@ -909,10 +965,17 @@ class _RecordProblem:
         return {**self.params,
                 **dict(zip(self.space.names, self.space.theta(z).tolist(), strict=True))}
 
+    def tell(self, r: np.ndarray) -> np.ndarray:
+        """Report the simulations so far and the cost of the residual ``r`` (returned)."""
+        if self.say is not None:
+            self.say(f"{self.stage}: {self.runs} simulations, cost {0.5 * float(r @ r):.6g}")
+        return r
+
     def simulate(self, z: np.ndarray, rtol: float | None = None):
         key = z.tobytes()
         if rtol is None and key in self.memo:
             return self.memo[key]
+        self.runs += 1
         try:
             res = self.model.simulate(stop=float(self.t[-1]), params=self.overrides(z),
                                       t_eval=self.t, rtol=rtol or self.rtol, atol=self.atol)
@@ -942,6 +1005,7 @@ class _RecordProblem:
                      }.values())
         if len(todo) < 2:
             return
+        self.runs += len(todo)
         try:
             runs = simulate_batch(self.model, [self.overrides(z) for z in todo],
                                   stop=float(self.t[-1]), t_eval=self.t, rtol=self.rtol,
@@ -969,16 +1033,16 @@ class _RecordProblem:
         if ys is None:
             self.failures += 1
             return np.full(self.t.size * len(self.names), FAILED_PENALTY)
-        return np.concatenate([(y - x) / s for y, x, s in zip(ys, self.data, self.spread,
-                                                               strict=True)])
+        return self.tell(np.concatenate([(y - x) / s for y, x, s in
+                                         zip(ys, self.data, self.spread, strict=True)]))
 
     def slow(self, z: np.ndarray) -> np.ndarray:
         ys = self.waveforms(z)
         if ys is None:
             self.failures += 1
             return np.full(sum(d.size for d in self.slow_data), FAILED_PENALTY)
-        return np.concatenate([(slow_features(self.W, y) - d) / s for y, d, s in
-                               zip(ys, self.slow_data, self.spread, strict=True)])
+        return self.tell(np.concatenate([(slow_features(self.W, y) - d) / s for y, d, s in
+                                         zip(ys, self.slow_data, self.spread, strict=True)]))
 
     def difference_steps(self, z: np.ndarray, r0: np.ndarray) -> np.ndarray:
         """Finite-difference steps sized to the simulation's own noise: the same run at
@@ -1078,6 +1142,8 @@ def _result(model, space: _Space, z: np.ndarray, unc: _Uncertainty, kind: str, o
 def format_result(result: FitResult, title: str = "") -> str:
     """Human-readable summary: estimates ± standard errors, correlations, residuals."""
     lines = [title] if title else []
+    if result.reduction is not None and result.reduction.reduced:
+        lines.append(result.reduction.note())
     lines.append(f"fit of {len(result.free)} parameter(s) to {result.kind}: "
                  f"{'converged' if result.success else 'NOT converged'} ({result.nfev} "
                  f"evaluations; stages: {', '.join(s.name for s in result.stages) or '-'})")

@@ -3,7 +3,8 @@
 Two forms of measurement feed ``circuitsim fit``:
 
 - a **record**: a CSV file with a header row, a ``time`` column [s] and one column per probe
-  of the netlist, in SI units, sampled at any uniform or non-uniform rate;
+  of the netlist, in SI units or in the unit its header names (``motor.i [A]``, ``w [rpm]``,
+  as ``circuitsim run`` writes them), sampled at any uniform or non-uniform rate;
 - **features**: a small YAML file of summary numbers, as a paper or a data sheet reports them
   (a steady value; the amplitude and frequency of a harmonic of the shaft rotation)::
 
@@ -28,7 +29,7 @@ from typing import Any
 import numpy as np
 
 from circuitsim.errors import CircuitsimError, SourceLoc
-from circuitsim.files import read_body, read_header
+from circuitsim.files import read_body, read_header_units
 
 
 class DataError(CircuitsimError):
@@ -71,8 +72,14 @@ def _row_error(path: str) -> Callable[[str, int], DataError]:
 
 
 def load_record(path: str | Path, probes: Sequence[str] | None = None, *,
-                inputs: Sequence[str] = (), time: str = "time") -> Record:
+                inputs: Sequence[str] = (), time: str = "time",
+                units: Mapping[str, str] | None = None) -> Record:
     """Read a measured record from a CSV file with a header row.
+
+    A column name may carry its unit in brackets, as ``circuitsim run`` writes them
+    (``time [s]``, ``motor.i [A]``); a name without one is in SI units. A unit is checked
+    against the probe's (``units``) and the column converted to SI (``w [rpm]``, ``i [mA]``
+    and ``time [ms]`` are read right).
 
     Parameters
     ----------
@@ -82,6 +89,8 @@ def load_record(path: str | Path, probes: Sequence[str] | None = None, *,
     inputs : column names that are measured inputs (they drive a table source), accepted
         besides the probes.
     time : name of the time column [s].
+    units : the unit of each probe (``model.meta["units"]``), against which a unit in the
+        header is checked; a column without an entry only needs a unit pint knows.
 
     Returns
     -------
@@ -97,7 +106,8 @@ def load_record(path: str | Path, probes: Sequence[str] | None = None, *,
         not increase or starts before 0, and a record without any probe column.
     """
     p = str(path)
-    header = read_header(p, _row_error(p))
+    cells = read_header_units(p, _row_error(p))
+    header = [name for name, _ in cells]
     if not header:
         raise DataError(f"data file '{p}' is empty. A record is a CSV with a header row "
                         f"('{time},PROBE,...') and one sample per row", SourceLoc(p))
@@ -105,11 +115,42 @@ def load_record(path: str | Path, probes: Sequence[str] | None = None, *,
         raise DataError(f"data file '{p}' has no header row (the first row is numbers). Add "
                         f"a first row naming the columns: '{time},PROBE,...'", SourceLoc(p, 1))
     _check_header(p, header, probes, inputs, time)
+    factors = [_unit_factor(p, name, unit, units or {}, time) for name, unit in cells]
     arr = read_body(p, header, _row_error(p))
     if arr.shape[0] < MIN_ROWS:
         raise DataError(f"data file '{p}' has {arr.shape[0]} data rows; a record needs at "
                         f"least {MIN_ROWS}", SourceLoc(p, arr.shape[0] + 1))
+    for j, f in enumerate(factors):
+        if f != 1.0:
+            arr[:, j] *= f
     return _record(p, header, arr, time)
+
+
+def _unit_factor(p: str, name: str, unit: str | None, units: Mapping[str, str],
+                 time: str) -> float:
+    """The SI factor of a column's unit in brackets (1 without one), after checking it
+    against the probe's unit (or seconds for the time column); DataError naming the column
+    when it does not fit."""
+    from circuitsim.units import compatible, explain_mismatch, unit_info
+
+    if unit is None:
+        return 1.0
+    cell = f"column '{name} [{unit}]' of data file '{p}'"
+    try:
+        factor, dim = unit_info(unit)
+    except ValueError as exc:
+        raise DataError(f"{cell}: {exc}. Write the unit as in the netlist (e.g. A, V, rad/s, "
+                        f"rpm), or leave the brackets out for SI", SourceLoc(p, 1)) from None
+    target = "s" if name == time else units.get(name, "")
+    try:
+        want = unit_info(target)[1] if target and target != "1" else None
+    except ValueError:  # a probe unit pint does not know: nothing to check against
+        want = None
+    if want is not None and not compatible(dim, want):
+        what = "the time column" if name == time else f"the probe '{name}'"
+        raise DataError(f"{cell}: {explain_mismatch(dim, want, target)}; {what} is in "
+                        f"{target}", SourceLoc(p, 1))
+    return factor
 
 
 def _check_header(p: str, header: list[str], probes: Sequence[str] | None,
@@ -402,13 +443,14 @@ def _same_dim(value_dim: Any, sigma_dim: Any, loc: SourceLoc, where: str) -> Non
 
 
 def load_data(path: str | Path, probes: Sequence[str] | None = None, *,
-              inputs: Sequence[str] = (), time: str = "time") -> Record | FeatureSet:
-    """A record (``.csv``, time column ``time`` [s]) or a features file (``.yaml``/``.yml``),
-    by extension."""
+              inputs: Sequence[str] = (), time: str = "time",
+              units: Mapping[str, str] | None = None) -> Record | FeatureSet:
+    """A record (``.csv``, time column ``time`` [s]; ``load_record``) or a features file
+    (``.yaml``/``.yml``), by extension."""
     suffix = Path(path).suffix.lower()
     if suffix in (".yaml", ".yml"):
         return load_features(path)
     if suffix in (".csv", ".txt", ""):
-        return load_record(path, probes, inputs=inputs, time=time)
+        return load_record(path, probes, inputs=inputs, time=time, units=units)
     raise DataError(f"data file '{path}': unknown kind '{suffix}'. Give a CSV record (.csv) "
                     f"or a features file (.yaml)", SourceLoc(str(path)))

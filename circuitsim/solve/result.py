@@ -139,14 +139,27 @@ class SimResult:
         frame.attrs["units"] = {n: self.model.meta["units"].get(n, "") for n in names}
         return frame
 
-    def to_csv(self, path: str | os.PathLike, names: list[str] | None = None) -> None:
-        """Write time and the named series (default: probes, else states), atomically."""
+    def to_csv(self, path: str | os.PathLike, names: list[str] | None = None,
+               units: bool = True) -> None:
+        """Write time and the named series (default: probes, else states), atomically; the
+        header names each column's unit in brackets (``time [s]``, ``i [A]``; ``fit`` and
+        ``diagnose`` read them back), or only the names with ``units=False``."""
         names = list(names or self.probes or self.states)
         data = np.column_stack([self.t] + [self[n] for n in names])
+        header = self.csv_header(names, units)
 
         def write(tmp: str) -> None:
             with open(tmp, "w", encoding="utf-8") as fh:
-                fh.write(",".join(["time", *names]) + "\n")
+                fh.write(",".join(header) + "\n")
                 np.savetxt(fh, data, delimiter=",", fmt="%.12g")
 
         atomic_write(path, write, make_dirs=False)
+
+    def csv_header(self, names: list[str], units: bool = True) -> list[str]:
+        """The CSV header cells of time and ``names``: ``time [s]``, ``v_out [V]`` (a name
+        without a known unit, or a dimensionless one, stays bare)."""
+        if not units:
+            return ["time", *names]
+        known = self.model.meta["units"]
+        return ["time [s]", *(f"{n} [{known[n]}]" if known.get(n) not in (None, "", "1")
+                              else n for n in names)]

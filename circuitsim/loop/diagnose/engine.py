@@ -60,7 +60,7 @@ MAX_COMBINATIONS = 10  # joint swaps tried after an acceptance
 def diagnose(netlist, record, free: Sequence[str] = (), *, probes: Sequence[str] | None = None,
              max_effects: int = MAX_EFFECTS, screen_top: int = SCREEN_TOP,
              rtol: float = 1e-8, params: Mapping[str, float] | None = None,
-             progress=None) -> Diagnosis:
+             progress=None, reduce: bool = True) -> Diagnosis:
     """Find what the netlist lacks to explain ``record`` (see the module docstring).
 
     Parameters
@@ -71,16 +71,28 @@ def diagnose(netlist, record, free: Sequence[str] = (), *, probes: Sequence[str]
     probes : probe columns to use (default: every probe the record has).
     params : overrides [SI]; for a declared free parameter, its start value.
     progress : called with a line of text at each step.
+    reduce : bring a long, oversampled record to the resolution its content needs first
+        (``loop.reduce``); every statistic is then of the working record.
     """
+    from circuitsim.loop.reduce import reduce_record
+    from circuitsim.netlist.load import Netlist, load
+
     start = time.perf_counter()
-    setup, state0 = fit_declared(netlist, record, free, probes, params, rtol, max_effects,
+    net = netlist if isinstance(netlist, Netlist) else load(netlist)
+    reduction = None
+    if reduce:
+        record, reduction = reduce_record(record, probes or [
+            p for p in record.names if p in net.probes] or None, progress=progress)
+    setup, state0 = fit_declared(net, record, free, probes, params, rtol, max_effects,
                                  progress)
     clock = {"fit_declared": time.perf_counter() - start}
     state, log = search(setup, state0, screen_top, clock)
     # what the search spent outside screening and refits: the backward step and swaps
     clock["revise"] = time.perf_counter() - start - sum(clock.values())
     clock["total"] = time.perf_counter() - start
-    return report(setup, state0, state, log, clock)
+    diag = report(setup, state0, state, log, clock)
+    diag.reduction = reduction
+    return diag
 
 
 def fit_declared(netlist, record, free, probes, params, rtol, max_effects, progress

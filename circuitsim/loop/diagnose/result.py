@@ -46,6 +46,7 @@ class Diagnosis:
     rejected: list[dict[str, Any]] = field(default_factory=list)
     corrections: list[Accepted] = field(default_factory=list)
     noise: dict[str, float] = field(default_factory=dict)
+    reduction: Any = None  # loop.reduce.Reduction: the record as the diagnosis used it
 
     def as_dict(self) -> dict[str, Any]:
         return _clean({
@@ -62,6 +63,7 @@ class Diagnosis:
             "noise": self.noise,
             "considered_not_accepted": self.rejected, "timings": self.timings,
             "final_fit": self.final_parameters(),
+            **({"record": self.reduction.as_dict()} if self.reduction is not None else {}),
             "summary": self.summary(),
         })
 
