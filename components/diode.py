@@ -2,9 +2,7 @@
 
 from __future__ import annotations
 
-import sympy as sp
-
-from circuitsim.component import Branch, OnePort, Option, Param, register
+from circuitsim.component import Branch, OnePort, Option, Param, register, sp
 
 #: Above this many thermal voltages the exponential is continued by its tangent (as SPICE
 #: limits the junction voltage): exp(40) ~ 2e17 times Is is far past any real current, and

@@ -8,9 +8,7 @@ scale, from 1/Roff to 1/Ron: over the signal's own edge for the time switch, ove
 
 from __future__ import annotations
 
-import sympy as sp
-
-from circuitsim.component import Branch, OnePort, Param, Pin, Signal, register
+from circuitsim.component import Branch, OnePort, Param, Pin, Signal, register, sp
 
 
 def _conductance(s, ron, roff):
