@@ -6,10 +6,17 @@ before the package's imports. This module imports nothing heavy, so it can catch
 with one line, as the command does once running.
 """
 
+import os
 import sys
 
 
 def main() -> int:
+    # circuitsim's dense algebra is small (least squares of a few columns, matrices of a few
+    # hundred unknowns at most): BLAS threads cost more in hand-overs than they save, and on a
+    # busy machine every threaded call waits for a free core (measured on 2 shared cores: a
+    # ripple fit's 1200 x 8 least squares 0.1 ms alone, 8 ms threaded; 0.2-0.3 s of a run).
+    # Set before numpy loads OpenBLAS; a user's own setting wins.
+    os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     try:
         from circuitsim.cli.main import main as run
     except KeyboardInterrupt:

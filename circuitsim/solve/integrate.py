@@ -37,11 +37,11 @@ def make_ida(residual, opts: dict):
     (scikit-sundae warns that its finite-difference use is ignored: that is intended)."""
     import warnings
 
-    import sksundae as sun
+    from circuitsim.solve.sundae import ida_class
 
     with warnings.catch_warnings():
         warnings.filterwarnings("ignore", message="Custom sparse Jacobian approximation")
-        return sun.ida.IDA(residual, **opts)
+        return ida_class()(residual, **opts)
 
 
 @dataclass(frozen=True)
