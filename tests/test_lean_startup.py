@@ -15,7 +15,8 @@ from conftest import NETLISTS, ROOT
 
 # sympy: derivation; pint, jsonschema: answered from the memo tables; scipy.optimize, scipy.fft:
 # scikit-sundae's import and the ripple fit no longer need them; matplotlib: only for a plot
-HEAVY = ("sympy", "pint", "jsonschema", "scipy.optimize", "scipy.fft", "matplotlib", "dask")
+HEAVY = ("sympy", "pint", "jsonschema", "scipy.optimize", "scipy.fft", "matplotlib", "dask",
+         "circuitsim.loop.fit", "circuitsim.loop.diagnose")  # the study verbs' modules
 
 RUN = """
 import contextlib, io, json, sys, warnings
