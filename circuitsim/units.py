@@ -76,7 +76,7 @@ def unit_info(unit: str) -> tuple[float, Dim]:
     if unit.strip() in ("", "1"):
         return 1.0, Dim((), 0.0)
     known = _memo().get(unit)
-    if known is None:
+    if not _well_formed(known):  # not there yet (or an entry edited by hand): ask pint
         try:
             factor, dim = _pint_info(unit)
             known = [factor, [list(kv) for kv in dim.dims], dim.angle]
@@ -90,6 +90,17 @@ def unit_info(unit: str) -> tuple[float, Dim]:
         return factor, Dim(tuple((k, v) for k, v in dims), angle)
     # pint refused it (the loader asks about SPICE suffixes such as 'k')
     raise ValueError(known["error"])
+
+
+def _well_formed(known: object) -> bool:
+    """A memo entry as ``unit_info`` writes it: [factor, [[dimension, exponent], ...], angle]
+    or {"error": message}."""
+    if isinstance(known, dict):
+        return isinstance(known.get("error"), str)
+    return (isinstance(known, list) and len(known) == 3 and isinstance(known[1], list)
+            and all(isinstance(x, (int, float)) for x in (known[0], known[2]))
+            and all(isinstance(kv, list) and len(kv) == 2 and isinstance(kv[0], str)
+                    and isinstance(kv[1], (int, float)) for kv in known[1]))
 
 
 # [characters] refusals of longer unit text are not remembered across runs

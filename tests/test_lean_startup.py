@@ -66,6 +66,21 @@ def test_remembered_units_are_pints_answers(tmp_path, monkeypatch):
     assert answers() == fresh
 
 
+def test_a_hand_edited_unit_entry_is_computed_again(tmp_path, monkeypatch):
+    import json
+
+    from circuitsim import units
+
+    monkeypatch.setenv("CIRCUITSIM_CACHE", str(tmp_path))
+    units.unit_info.cache_clear()
+    right = units.unit_info("mH")
+    table = next(tmp_path.glob("memo-units-*.json"))
+    table.write_text(json.dumps({"mH": ["one", [], 0.0]}))
+    units._memo.cache_clear()
+    units.unit_info.cache_clear()
+    assert units.unit_info("mH") == right
+
+
 def test_bounded_minimum_takes_scipys_steps():
     from scipy.optimize import minimize_scalar
 
