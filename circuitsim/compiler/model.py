@@ -163,8 +163,8 @@ class CompiledModel:
     def ida_options(self) -> dict[str, Any]:
         """Linear-solver options for ``sksundae.ida.IDA`` matching ``fns``' ``jac``."""
         _, jac, *_ = self.fns
-        if self.linsolver == "dense":
-            return {"linsolver": "dense", "jacfn": jac}
+        if self.linsolver == "dense":  # model: for the compiled kernels, if asked for
+            return {"linsolver": "dense", "jacfn": jac, "model": self}
         import scipy.sparse as sps
 
         rows, cols = self.meta["jac_pattern"]

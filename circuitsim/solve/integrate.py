@@ -34,11 +34,20 @@ def _break_times(model, values: Mapping[str, float], stop: float) -> list[float]
 
 def make_ida(residual, opts: dict):
     """An IDA solver; the pattern given with our own Jacobian only sizes the sparse matrix
-    (scikit-sundae warns that its finite-difference use is ignored: that is intended)."""
+    (scikit-sundae warns that its finite-difference use is ignored: that is intended).
+    ``opts["model"]`` (from ``ida_options``) lets IDA call the model's compiled kernels
+    directly when they are asked for (solve/direct.py)."""
     import warnings
 
     from circuitsim.solve.sundae import ida_class
 
+    model, opts = opts.get("model"), {k: v for k, v in opts.items() if k != "model"}
+    if model is not None:
+        from circuitsim.solve.direct import ida_for
+
+        direct = ida_for(model, opts)
+        if direct is not None:
+            return direct
     with warnings.catch_warnings():
         warnings.filterwarnings("ignore", message="Custom sparse Jacobian approximation")
         return ida_class()(residual, **opts)

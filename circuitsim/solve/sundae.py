@@ -47,3 +47,9 @@ def ida_class() -> type:
     import sksundae.ida
 
     return sksundae.ida.IDA
+
+
+def ida_messages() -> dict[int, str]:
+    """scikit-sundae's texts of IDA's return flags (the same words whichever route ran)."""
+    ida_class()
+    return dict(sys.modules["sksundae._cy_ida"].IDAMESSAGES)
