@@ -18,7 +18,7 @@ from __future__ import annotations
 
 from typing import Any
 
-CODEGEN_VERSION = "10"
+CODEGEN_VERSION = "11"
 
 
 def _printers():
@@ -344,7 +344,7 @@ import math
 
 import numpy
 from llvmlite import ir
-from numba import carray, cfunc, types
+from numba import carray, cfunc, njit, types
 from numba.extending import intrinsic
 
 
@@ -360,6 +360,37 @@ def _second_field(context, builder, signature, args):
 @intrinsic
 def data_of(typingctx, x):
     return types.voidptr(types.voidptr), _second_field
+
+
+def _int_to_pointer(context, builder, signature, args):
+    return builder.inttoptr(args[0], ir.IntType(8).as_pointer())
+
+
+@intrinsic
+def as_pointer(typingctx, address):
+    return types.voidptr(address), _int_to_pointer
+
+
+IDA_SOLVE = types.ExternalFunction("IDASolve", types.int32(
+    types.voidptr, types.float64, types.voidptr, types.voidptr, types.voidptr, types.int32))
+
+
+@njit(cache=True)
+def outputs(mem, yy, yp, tspan, Y, YP, out_t, out_y, out_yp):
+    """IDA_NORMAL to every output time, storing t, y and y' (the loop without Python); the
+    number of rows filled and IDA's last flag."""
+    tret = numpy.zeros(1)
+    k, flag = 1, 0
+    while k < tspan.size:
+        flag = IDA_SOLVE(as_pointer(mem), tspan[k], as_pointer(tret.ctypes.data),
+                         as_pointer(yy), as_pointer(yp), 1)
+        if flag < 0:
+            break
+        out_t[k] = tret[0]
+        out_y[k, :] = Y
+        out_yp[k, :] = YP
+        k += 1
+    return k, flag
 
 
 RES = types.int32(types.float64, types.voidptr, types.voidptr, types.voidptr, types.voidptr)

@@ -3,13 +3,14 @@
 scikit-sundae calls the model through a Python callback, about 4.5 µs a call on top of the
 residual's own arithmetic; that wrapper, not IDA, is most of a small model's solve. With numba
 installed and ``CIRCUITSIM_KERNELS=numba`` set, a model whose generated module carries kernels
-(``codegen._kernels``: the residual and dense Jacobian as numba ``cfunc``s, compiled once and
-kept by numba beside the model in the cache folder) is integrated by the same IDA, scikit-sundae's
-bundled SUNDIALS libraries loaded with ctypes, with the same options: the same steps and the same
-numbers, to the bit, in an eighth of the time (``benchmarks/bench_compiled_route.py``). Importing
-numba and loading the kernels costs about 0.45 s per process, so it pays from a handful of solves
-in one process (sweeps, fits); it is off by default. Models without kernels (run-time tables,
-100 unknowns or more), the sparse solver and event functions stay with scikit-sundae.
+(``codegen._kernels``: the residual and the dense Jacobian as numba ``cfunc``s and the loop over
+the output times, compiled once and kept by numba beside the model in the cache folder) is
+integrated by the same IDA, scikit-sundae's bundled SUNDIALS libraries loaded with ctypes, with
+the same options: the same steps and the same numbers, to the bit, many times faster
+(``benchmarks/bench_compiled_route.py``). Importing numba and loading the kernels costs about
+half a second per process, so it pays from a handful of solves in one process (sweeps,
+scripts); it is off by default. Models without kernels (run-time tables, 100 unknowns or more),
+the sparse solver, the batched solve and event functions stay with scikit-sundae.
 """
 
 from __future__ import annotations
@@ -24,8 +25,6 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-
-IDA_NORMAL, IDA_ONE_STEP = 1, 2
 
 
 def wanted() -> bool:
@@ -143,7 +142,7 @@ class DirectIDA:
         """The SUNDIALS objects of one solve, set up as scikit-sundae sets them (its defaults
         are SUNDIALS' own: 4 Newton iterations, 10 convergence failures, order 5)."""
         core, ida, n, o = lib["core"], lib["ida"], len(y0), self.opts
-        h: dict[str, Any] = {"n": n}
+        h: dict[str, Any] = {"n": n, "module": self.module}
         h["yy"], h["yp"], h["id"] = (lib["nvecserial"].N_VNew_Serial(n, ctx) for _ in range(3))
         for name, vec, value in (("Y", "yy", y0), ("YP", "yp", yp0), ("ID", "id", 1.0)):
             h[name] = np.ctypeslib.as_array(core.N_VGetArrayPointer(h[vec]), (n,))
@@ -174,20 +173,9 @@ class DirectIDA:
         out_t = np.empty(tspan.size)
         out_t[0], out_y[0], out_yp[0] = tspan[0], h["Y"], h["YP"]
         ida.IDASetStopTime(h["mem"], float(tspan[-1]))
-        # the output loop is the one Python left per step of the output grid: locals, and
-        # arguments converted to ctypes once
-        tret, flag, k = ctypes.c_double(), 0, 1
-        step, ref = ida.IDASolve, ctypes.byref(tret)
-        mem, yy, yp = h["mem"], ctypes.c_void_p(h["yy"]), ctypes.c_void_p(h["yp"])
-        Y, YP = h["Y"], h["YP"]
-        for tout in tspan[1:].tolist():
-            flag = step(mem, tout, ref, yy, yp, IDA_NORMAL)
-            if flag < 0:
-                break
-            out_t[k] = tret.value
-            out_y[k] = Y
-            out_yp[k] = YP
-            k += 1
+        # the loop over the output times is compiled too (2 µs an output time in Python)
+        k, flag = h["module"].outputs(h["mem"].value, h["yy"], h["yp"], tspan, h["Y"],
+                                      h["YP"], out_t, out_y, out_yp)
         counts = [ctypes.c_long(), ctypes.c_long()]
         ida.IDAGetNumResEvals(h["mem"], ctypes.byref(counts[0]))
         ida.IDAGetNumJacEvals(h["mem"], ctypes.byref(counts[1]))
