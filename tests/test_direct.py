@@ -92,3 +92,30 @@ def test_a_small_pwl_table_runs_compiled(compile_text, tmp_path, monkeypatch):
     """)
     assert model.meta["kernels"]
     _same(*_both(model, monkeypatch))
+
+
+def test_no_libraries_means_the_usual_route_and_one_warning(compile_text, monkeypatch):
+    """scikit-sundae's libraries not where a Linux wheel has them: a warning, then the
+    Python residual, with the same result."""
+    from circuitsim.errors import CircuitWarning
+    from circuitsim.solve import direct
+
+    model = compile_text("""
+        components:
+          - {name: V1, type: V, p: a, n: gnd, V: {step: {v0: 0, v1: 1, t0: 1 ms, rise: 0.1 ms}}}
+          - {name: R1, type: R, p: a, n: b, R: 1k}
+          - {name: C1, type: C, p: b, n: gnd, C: 1 uF}
+        probes: {vc: b.v}
+        analysis: {stop: 5 ms, step: 10 us}
+    """)
+
+    def missing():
+        raise StopIteration("no libsundials_ida")
+
+    monkeypatch.setattr(direct, "_libraries", missing)
+    monkeypatch.delenv("CIRCUITSIM_KERNELS", raising=False)
+    python = model.simulate()
+    monkeypatch.setenv("CIRCUITSIM_KERNELS", "numba")
+    with pytest.warns(CircuitWarning, match="compiled kernels unavailable"):
+        fallback = model.simulate()
+    _same(python, fallback)

@@ -200,6 +200,7 @@ def ida_for(model, opts: dict) -> DirectIDA | None:
         return None
     try:
         module = kernels(model)
+        _libraries()  # found on Linux wheels; elsewhere this fails and the usual route runs
     except Exception as exc:  # noqa: BLE001 - numba and the libraries fail in many ways
         import warnings
 
