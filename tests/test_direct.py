@@ -119,3 +119,17 @@ def test_no_libraries_means_the_usual_route_and_one_warning(compile_text, monkey
     with pytest.warns(CircuitWarning, match="compiled kernels unavailable"):
         fallback = model.simulate()
     _same(python, fallback)
+
+
+def test_a_batch_runs_stacked_kernels_to_the_bit(monkeypatch):
+    """K members in one band system, as fit and diagnose integrate them."""
+    from circuitsim.solve.batch import simulate_batch
+
+    model = cs.compile(cs.load(NETLISTS / "kim2024" / "base.yaml"))
+    sets = [{"Ra": 1.1 * (1 + 1e-4 * j)} for j in range(4)]
+    monkeypatch.delenv("CIRCUITSIM_KERNELS", raising=False)
+    python = simulate_batch(model, sets, stop=0.02)
+    monkeypatch.setenv("CIRCUITSIM_KERNELS", "numba")
+    kernels = simulate_batch(model, sets, stop=0.02)
+    for a, b in zip(python, kernels, strict=True):
+        _same(a, b)

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 from typing import Any
 
-CODEGEN_VERSION = "11"
+CODEGEN_VERSION = "12"
 
 
 def _printers():
@@ -362,6 +362,30 @@ def data_of(typingctx, x):
     return types.voidptr(types.voidptr), _second_field
 
 
+def _band_field(offset, kind):
+    # a band SUNMatrix's content: int32 M, N, ldim, mu, ml, s_mu, then the data pointer
+    def codegen(context, builder, signature, args):
+        content = builder.load(builder.bitcast(args[0], ir.IntType(8).as_pointer().as_pointer()))
+        field = builder.gep(content, [ir.Constant(ir.IntType(64), offset)])
+        return builder.load(builder.bitcast(field, kind.as_pointer()))
+    return codegen
+
+
+@intrinsic
+def band_data(typingctx, x):
+    return types.voidptr(types.voidptr), _band_field(24, ir.IntType(8).as_pointer())
+
+
+@intrinsic
+def band_ldim(typingctx, x):
+    return types.int32(types.voidptr), _band_field(8, ir.IntType(32))
+
+
+@intrinsic
+def band_smu(typingctx, x):
+    return types.int32(types.voidptr), _band_field(20, ir.IntType(32))
+
+
 def _int_to_pointer(context, builder, signature, args):
     return builder.inttoptr(args[0], ir.IntType(8).as_pointer())
 
@@ -401,32 +425,52 @@ JAC = types.int32(types.float64, types.float64, types.voidptr, types.voidptr, ty
 
 def _kernels(F: list, jac_exprs: list, pattern: list, n: int, n_par: int, scalar
              ) -> str | None:
-    """Source of numba ``cfunc`` residual and dense Jacobian (column-major) for IDA to call
-    directly, or None when the model reads run-time tables (Python callables)."""
-    from circuitsim.component import as_expr
-
-    def body(name: str, sig: str, args: str, exprs: list, targets: list[str],
-             pre: list[str]) -> list[str]:
-        used = {str(q) for e in exprs for q in as_expr(e).free_symbols}
-        lines = ["", "", f'@cfunc({sig}, cache=True, error_model="numpy")',
-                 f"def {name}({args}):", *pre]
-        lines += [f"    y{k} = y[{k}]" for k in range(n) if f"y{k}" in used]
-        lines += [f"    yp{k} = d[{k}]" for k in range(n) if f"yp{k}" in used]
-        lines += [f"    p{k} = p[{k}]" for k in range(n_par) if f"p{k}" in used]
-        lines += _block(exprs, scalar, "    ", targets)
-        return [*lines, "    return 0"]
-
+    """Source of numba ``cfunc`` kernels for IDA to call directly, or None when the model reads
+    run-time tables (Python callables): the residual and the dense Jacobian (column-major) of
+    one member, and of K members stacked (``ud`` = K, then each member's parameters) with the
+    Jacobian in SUNDIALS' band storage, as ``solve/batch.py`` integrates them."""
     vec = "carray(data_of({}), {}, dtype=numpy.float64)"
     pre = [f"    y = {vec.format('yy', n)}", f"    d = {vec.format('ypv', n)}",
            f"    p = carray(ud, {max(n_par, 1)}, dtype=numpy.float64)"]
     src = [_KERNEL_HEADER.rstrip()]
-    src += body("residual", "RES", "t, yy, ypv, rr, ud", F, [f"r[{i}]" for i in range(n)],
-                [*pre, f"    r = {vec.format('rr', n)}"])
-    src += body("jacobian", "JAC", "t, cj, yy, ypv, rr, J, ud, t1, t2, t3", jac_exprs,
-                [f"a[{i + j * n}]" for i, j in pattern],
-                [*pre, f"    a = {vec.format('J', n * n)}"])
+    src += _kernel("residual", "RES", "t, yy, ypv, rr, ud", F, [f"r[{i}]" for i in range(n)],
+                   [*pre, f"    r = {vec.format('rr', n)}"], n, n_par, scalar)
+    src += _kernel("jacobian", "JAC", "t, cj, yy, ypv, rr, J, ud, t1, t2, t3", jac_exprs,
+                   [f"a[{i + j * n}]" for i, j in pattern],
+                   [*pre, f"    a = {vec.format('J', n * n)}"], n, n_par, scalar)
+    stacked = "carray(data_of({}), K * " + str(n) + ", dtype=numpy.float64)"
+    pre_k = ["    K = int(carray(ud, 1, dtype=numpy.float64)[0])",
+             f"    y = {stacked.format('yy')}", f"    d = {stacked.format('ypv')}",
+             f"    p = carray(ud, 1 + K * {n_par}, dtype=numpy.float64)"]
+    src += _kernel("residual_batch", "RES", "t, yy, ypv, rr, ud", F,
+                   [f"r[o + {i}]" for i in range(n)],
+                   [*pre_k, f"    r = {stacked.format('rr')}"], n, n_par, scalar, batch=True)
+    src += _kernel("jacobian_band", "JAC", "t, cj, yy, ypv, rr, J, ud, t1, t2, t3", jac_exprs,
+                   [f"a[(o + {j}) * ldim + smu + {i - j}]" for i, j in pattern],
+                   [*pre_k, "    ldim, smu = band_ldim(J), band_smu(J)",
+                    f"    a = carray(band_data(J), ldim * K * {n}, dtype=numpy.float64)"],
+                   n, n_par, scalar, batch=True)
     text = "\n".join(src) + "\n"
     return None if ("T[" in text or "TD[" in text) else text
+
+
+def _kernel(name: str, sig: str, args: str, exprs: list, targets: list[str], pre: list[str],
+            n: int, n_par: int, scalar, batch: bool = False) -> list[str]:
+    """One cfunc: the arrays, the names the expressions use, the assignments; for a batch,
+    the same body once per member (offset o into the states, q into the parameters)."""
+    from circuitsim.component import as_expr
+
+    used = {str(q) for e in exprs for q in as_expr(e).free_symbols}
+    ind = "        " if batch else "    "
+    o, q = ("o + ", "q + ") if batch else ("", "")
+    body = [f"{ind}y{k} = y[{o}{k}]" for k in range(n) if f"y{k}" in used]
+    body += [f"{ind}yp{k} = d[{o}{k}]" for k in range(n) if f"yp{k}" in used]
+    body += [f"{ind}p{k} = p[{q}{k}]" for k in range(n_par) if f"p{k}" in used]
+    body += _block(exprs, scalar, ind, targets)
+    if batch:
+        body = ["    for k in range(K):", f"        o, q = k * {n}, 1 + k * {n_par}", *body]
+    return ["", "", f'@cfunc({sig}, cache=True, error_model="numpy")',
+            f"def {name}({args}):", *pre, *body, "    return 0"]
 
 
 def generate(dae) -> tuple[str, dict[str, Any]]:

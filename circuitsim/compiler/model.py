@@ -167,7 +167,7 @@ class CompiledModel:
         if self.linsolver == "dense":
             opts = {"linsolver": "dense", "jacfn": jac}
             if os.environ.get("CIRCUITSIM_KERNELS"):  # IDA may call compiled kernels
-                opts["model"] = self  # (solve/direct.py)
+                opts["kernels_of"] = (self, None)  # (solve/direct.py)
             return opts
         import scipy.sparse as sps
 

@@ -56,7 +56,8 @@ def _libraries() -> dict[str, Any]:
     folder = Path(spec.origin).parent.parent / "scikit_sundae.libs"
     lib = {name: ctypes.CDLL(str(next(folder.glob(f"libsundials_{name}-*.so*"))),
                              mode=ctypes.RTLD_GLOBAL)
-           for name in ("core", "nvecserial", "sunmatrixdense", "sunlinsoldense", "ida")}
+           for name in ("core", "nvecserial", "sunmatrixdense", "sunlinsoldense",
+                        "sunmatrixband", "sunlinsolband", "ida")}
     vp, dbl, i32, lng = ctypes.c_void_p, ctypes.c_double, ctypes.c_int, ctypes.c_long
     for name, res, args in _signatures(vp, dbl, i32, lng):
         owner, fn = name.split(".")
@@ -75,6 +76,8 @@ def _signatures(vp, dbl, i32, lng) -> list:
             ("nvecserial.N_VNew_Serial", vp, [i32, vp]),
             ("sunmatrixdense.SUNDenseMatrix", vp, [i32, i32, vp]),
             ("sunlinsoldense.SUNLinSol_Dense", vp, [vp, vp, vp]),
+            ("sunmatrixband.SUNBandMatrix", vp, [i32, i32, i32, vp]),
+            ("sunlinsolband.SUNLinSol_Band", vp, [vp, vp, vp]),
             ("ida.IDACreate", vp, [vp]), ("ida.IDAInit", i32, [vp, vp, dbl, vp, vp]),
             ("ida.IDAFree", None, [ptr(vp)]), ("ida.IDASStolerances", i32, [vp, dbl, dbl]),
             ("ida.IDASetLinearSolver", i32, [vp, vp, vp]), ("ida.IDASetJacFn", i32, [vp, vp]),
@@ -98,7 +101,7 @@ def kernels(model) -> Any | None:
     from circuitsim.memo import open_cache_dir
 
     source = model.meta.get("kernels")
-    if not source or model.linsolver != "dense":
+    if not source or model.linsolver != "dense" or "residual_batch" not in source:
         return None
     if model.key in _LOADED:
         return _LOADED[model.key]
@@ -123,8 +126,10 @@ class DirectIDA:
     """IDA with the kernels of one model: the part of scikit-sundae's ``IDA`` that
     ``integrate`` uses (``solve`` over a time span), with the same options."""
 
-    def __init__(self, module, opts: dict):
+    def __init__(self, module, opts: dict, members: list | None = None):
         self.module, self.opts = module, opts
+        # one model, or K members stacked (solve/batch.py: band solver, K parameter vectors)
+        self.members = members
 
     def solve(self, tspan, y0, yp0) -> Result:
         """Outputs at ``tspan[1:]`` (a two-point span: the end only), stopping at its end."""
@@ -148,21 +153,33 @@ class DirectIDA:
             h[name] = np.ctypeslib.as_array(core.N_VGetArrayPointer(h[vec]), (n,))
             h[name][:] = value
         h["ID"][list(o.get("algebraic_idx") or [])] = 0.0
-        # at least one entry: the kernels read p[0] when a model has no parameters
-        h["p"] = np.zeros(max(len(o["userdata"]), 1))
-        h["p"][: len(o["userdata"])] = o["userdata"]
+        h["p"], residual, jacobian = self._kernels_and_data()
         mem = h["mem"] = ctypes.c_void_p(ida.IDACreate(ctx))
         ida.IDASetUserData(mem, h["p"].ctypes.data)
-        ida.IDAInit(mem, self.module.residual.address, float(t0), h["yy"], h["yp"])
-        h["A"] = lib["sunmatrixdense"].SUNDenseMatrix(n, n, ctx)
-        h["LS"] = lib["sunlinsoldense"].SUNLinSol_Dense(h["yy"], h["A"], ctx)
+        ida.IDAInit(mem, residual.address, float(t0), h["yy"], h["yp"])
+        if self.members is None:
+            h["A"] = lib["sunmatrixdense"].SUNDenseMatrix(n, n, ctx)
+            h["LS"] = lib["sunlinsoldense"].SUNLinSol_Dense(h["yy"], h["A"], ctx)
+        else:
+            h["A"] = lib["sunmatrixband"].SUNBandMatrix(n, o["uband"], o["lband"], ctx)
+            h["LS"] = lib["sunlinsolband"].SUNLinSol_Band(h["yy"], h["A"], ctx)
         ida.IDASetLinearSolver(mem, h["LS"], h["A"])
-        ida.IDASetJacFn(mem, self.module.jacobian.address)
+        ida.IDASetJacFn(mem, jacobian.address)
         ida.IDASStolerances(mem, float(o["rtol"]), float(o["atol"]))
         ida.IDASetId(mem, h["id"])
         ida.IDASetMaxStep(mem, float(o.get("max_step") or 0.0))
         ida.IDASetMaxNumSteps(mem, int(o.get("max_num_steps", 500)))
         return h
+
+    def _kernels_and_data(self) -> tuple[np.ndarray, Any, Any]:
+        """The user data (the parameters; for a batch K, then each member's) and the two
+        kernels. At least one entry: the kernels read p[0] when a model has none."""
+        m = self.module
+        if self.members is None:
+            p = list(self.opts["userdata"])
+            return np.array(p + [0.0] * (not p), dtype=float), m.residual, m.jacobian
+        data = [float(len(self.members))] + [v for q in self.members for v in q]
+        return np.array(data, dtype=float), m.residual_batch, m.jacobian_band
 
     @staticmethod
     def _run(lib, h: dict, tspan: np.ndarray) -> Result:
@@ -193,10 +210,13 @@ class DirectIDA:
         lib["core"].SUNContext_Free(ctypes.byref(ctx))
 
 
-def ida_for(model, opts: dict) -> DirectIDA | None:
-    """A DirectIDA for ``model`` when kernels are wanted and it has them, else None (also,
-    with one warning, when they cannot be built: the Python route then runs as always)."""
-    if not wanted() or opts.get("linsolver") != "dense" or opts.get("eventsfn"):
+def ida_for(opts: dict) -> DirectIDA | None:
+    """A DirectIDA for ``opts["kernels_of"]`` = (model, None) or, for a stacked batch, (model,
+    members' parameter vectors) when kernels are wanted and the model has them, else None
+    (also, with one warning, when they cannot be built: the Python route then runs)."""
+    model, members = opts["kernels_of"]
+    solver = "band" if members is not None else "dense"
+    if not wanted() or opts.get("linsolver") != solver or opts.get("eventsfn"):
         return None
     try:
         module = kernels(model)
@@ -211,4 +231,4 @@ def ida_for(model, opts: dict) -> DirectIDA | None:
         warnings.warn(f"compiled kernels unavailable ({type(exc).__name__}: {why}); the "
                       f"Python residual is used", CircuitWarning, stacklevel=3)
         return None
-    return DirectIDA(module, opts) if module is not None else None
+    return DirectIDA(module, opts, members) if module is not None else None
