@@ -9,8 +9,9 @@ integrated by the same IDA, scikit-sundae's bundled SUNDIALS libraries loaded wi
 the same options: the same steps and the same numbers, to the bit, many times faster
 (``benchmarks/bench_compiled_route.py``). Importing numba and loading the kernels costs about
 half a second per process, so it pays from a handful of solves in one process (sweeps,
-scripts); it is off by default. Models without kernels (run-time tables, 100 unknowns or more),
-the sparse solver, the batched solve and event functions stay with scikit-sundae.
+scripts, fits); it is off by default. Batches of K members stacked in one band system
+(``solve/batch.py``) run on stacked kernels. Models without kernels (run-time tables, 100
+unknowns or more), the sparse solver and event functions stay with scikit-sundae.
 """
 
 from __future__ import annotations
