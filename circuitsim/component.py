@@ -12,9 +12,16 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
-from typing import Any, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
-import sympy as sp
+from circuitsim.lazy import LazyModule
+
+if TYPE_CHECKING:
+    import sympy as sp
+else:
+    # Components write equations with ``sp``; taken from here, sympy loads only when one is
+    # first built, so a run served from the model cache never imports it (0.2-0.3 s).
+    sp = LazyModule("sympy")
 
 
 @dataclass(frozen=True, slots=True)
@@ -425,36 +432,25 @@ def as_expr(x: Any) -> sp.Basic:
     raise TypeError(f"expected a sympy expression or a number, got {type(x).__name__}")
 
 
-class Pmod(sp.Function):
-    """Periodic time: x mod T in [0, T). Its derivative in x is 1 (corners are breakpoints)."""
+def Pmod(x: Any, T: Any) -> sp.Expr:
+    """Periodic time: x mod T in [0, T), as a sympy function (``symfunc.Pmod``)."""
+    from circuitsim import symfunc
 
-    nargs = 2
-
-    def fdiff(self, argindex=1):
-        if argindex == 1:
-            return sp.Integer(1)
-        x, T = self.args
-        return -sp.floor(x / T)
+    return symfunc.Pmod(x, T)
 
 
-class Lookup(sp.Function):
-    """Linear interpolation of the run-time table number ``k`` at ``x``: Lookup(k, x)."""
+def Lookup(k: Any, x: Any) -> sp.Expr:
+    """Linear interpolation of the run-time table number ``k`` at ``x`` (``symfunc.Lookup``)."""
+    from circuitsim import symfunc
 
-    nargs = 2
-
-    def fdiff(self, argindex=2):
-        if argindex != 2:
-            raise sp.ArgumentIndexError(self, argindex)
-        return LookupSlope(*self.args)
+    return symfunc.Lookup(k, x)
 
 
-class LookupSlope(sp.Function):
-    """Slope of table ``k`` at ``x`` (piecewise constant, so its own derivative is 0)."""
+def LookupSlope(k: Any, x: Any) -> sp.Expr:
+    """Slope of table ``k`` at ``x`` (``symfunc.LookupSlope``)."""
+    from circuitsim import symfunc
 
-    nargs = 2
-
-    def fdiff(self, argindex=2):
-        return sp.Integer(0)
+    return symfunc.LookupSlope(k, x)
 
 
 @dataclass(frozen=True)

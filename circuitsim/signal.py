@@ -23,6 +23,7 @@ only has to land within a fraction of a bin for the least-squares stage to conve
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -223,15 +224,15 @@ def spectrum(t: np.ndarray, x: np.ndarray, window: str = "hann") -> tuple[np.nda
     # Periodic (fftbins) window: the DFT of a periodic window has exact zeros at the
     # neighbouring bins, which is the intended spectral-analysis behaviour.
     w = _window(window, n)
-    import scipy.fft  # here, not at import: 0.25 s that a run without spectra never needs
-
-    amp = np.abs(scipy.fft.rfft(xu * w)) / np.sum(w)
+    # numpy's FFT (pocketfft, as scipy.fft, to the bit on these real transforms): importing
+    # scipy.fft costs 0.05-0.1 s of every CLI run
+    amp = np.abs(np.fft.rfft(xu * w)) / np.sum(w)
     # Fold negative frequencies onto positive ones; DC and (for even n) Nyquist have
     # no mirror image.
     amp[1:] *= 2.0
     if n % 2 == 0:
         amp[-1] /= 2.0
-    return scipy.fft.rfftfreq(n, dt), amp
+    return np.fft.rfftfreq(n, dt), amp
 
 
 def _fft_peak_frequency(t: np.ndarray, x: np.ndarray, near: float | None, rel_band: float) -> float:
@@ -267,10 +268,8 @@ def _fft_peak_frequency(t: np.ndarray, x: np.ndarray, near: float | None, rel_ba
     xu = xu - np.polyval(np.polyfit(k, xu, 1), k)
     nfft = _PAD_FACTOR * (1 << (n - 1).bit_length())
     w = _window("hann", n)
-    import scipy.fft
-
-    mag = np.abs(scipy.fft.rfft(xu * w, nfft))
-    freqs = scipy.fft.rfftfreq(nfft, duration / (n - 1))
+    mag = np.abs(np.fft.rfft(xu * w, nfft))
+    freqs = np.fft.rfftfreq(nfft, duration / (n - 1))
 
     if near is None:
         candidates = np.flatnonzero(freqs >= _MIN_PERIODS / duration)
@@ -355,6 +354,60 @@ def _linear_fit(
     # itself, which the frequency search needs near a near-zero minimum.
     resid = x - design @ coef
     return coef, float(resid @ resid)
+
+
+def bounded_minimum(func: Callable[[float], float], lo: float, hi: float, *,
+                    xatol: float = 1e-5, maxiter: int = 500) -> float:
+    """The x in [lo, hi] minimising ``func``: Brent's bounded search (golden sections and
+    parabolic steps; Forsythe, Malcolm & Moler 1977, ``fmin``), step for step as scipy's
+    ``minimize_scalar(method="bounded")`` takes it, so results agree to the bit; written
+    here because importing scipy.optimize costs 0.1-0.2 s of every CLI run."""
+    golden = 0.5 * (3.0 - math.sqrt(5.0))
+    sqrt_eps = math.sqrt(2.2e-16)
+    a, b = lo, hi
+    v = w = x = a + golden * (b - a)  # third best, second best, best point so far
+    fv = fw = fx = func(x)
+    d = e = 0.0  # this step and the one before the last
+    calls = 1
+    xm = 0.5 * (a + b)
+    tol1 = sqrt_eps * abs(x) + xatol / 3.0
+    while abs(x - xm) > 2.0 * tol1 - 0.5 * (b - a):
+        parabolic = False
+        if abs(e) > tol1:  # try a parabola through x, w, v
+            r = (x - w) * (fx - fv)
+            q = (x - v) * (fx - fw)
+            p = (x - v) * q - (x - w) * r
+            q = 2.0 * (q - r)
+            if q > 0.0:
+                p = -p
+            q = abs(q)
+            r, e = e, d
+            if abs(p) < abs(0.5 * q * r) and q * (a - x) < p < q * (b - x):
+                parabolic = True
+                d = (p + 0.0) / q
+                u = x + d
+                if (u - a) < 2.0 * tol1 or (b - u) < 2.0 * tol1:
+                    d = tol1 * (1.0 if xm >= x else -1.0)
+        if not parabolic:
+            e = (a - x) if x >= xm else (b - x)
+            d = golden * e
+        u = x + (1.0 if d >= 0 else -1.0) * max(abs(d), tol1)
+        fu = func(u)
+        calls += 1
+        if fu <= fx:
+            a, b = (x, b) if u >= x else (a, x)
+            v, fv, w, fw, x, fx = w, fw, x, fx, u, fu
+        else:
+            a, b = (u, b) if u < x else (a, u)
+            if fu <= fw or w == x:
+                v, fv, w, fw = w, fw, u, fu
+            elif fu <= fv or v == x or v == w:
+                v, fv = u, fu
+        xm = 0.5 * (a + b)
+        tol1 = sqrt_eps * abs(x) + xatol / 3.0
+        if calls >= maxiter:
+            break
+    return x
 
 
 def _check_frequency(name: str, value: float, duration: float, nyquist: float) -> float:
@@ -463,15 +516,10 @@ def _refine_frequency(tc: np.ndarray, half: float, x_arr: np.ndarray, f_start: f
     hi = min(_SEARCH_HALF_WIDTH_BINS, (nyquist - f_start) / bin_width)
     if not hi > lo:
         return start
-    import scipy.optimize
-
-    res = scipy.optimize.minimize_scalar(
+    u_best = bounded_minimum(
         lambda u: _linear_fit(tc, half, x_arr, f_start + u * bin_width, orders)[1],
-        bounds=(lo, hi),
-        method="bounded",
-        options={"xatol": _SEARCH_XATOL_BINS, "maxiter": 500},
-    )
-    f_try = f_start + float(res.x) * bin_width
+        lo, hi, xatol=_SEARCH_XATOL_BINS, maxiter=500)
+    f_try = f_start + u_best * bin_width
     coef_try, rss_try = _linear_fit(tc, half, x_arr, f_try, orders)
     # Bounded Brent can in principle settle in a side minimum; never return a
     # fit worse than the starting frequency.
@@ -606,9 +654,7 @@ def ripple_summary(t: np.ndarray, x: np.ndarray) -> Ripple:
     dev = xu - np.mean(xu)
     if float(np.std(dev)) <= _NO_RIPPLE_REL_RMS * max(scale, np.finfo(float).tiny):
         return Ripple("none", mean)
-    import scipy.fft
-
-    power = np.abs(scipy.fft.rfft(dev))[1:] ** 2
+    power = np.abs(np.fft.rfft(dev))[1:] ** 2
     k, p = fisher_g_test(power)
     duration = float(tu[-1] - tu[0])
     line = (k + 1) / duration  # bin k+1 (the DC bin was dropped)

@@ -73,9 +73,43 @@ def unit_info(unit: str) -> tuple[float, Dim]:
 
     Raises ValueError when pint does not know the unit.
     """
-    ureg = registry()
     if unit.strip() in ("", "1"):
         return 1.0, Dim((), 0.0)
+    known = _memo().get(unit)
+    if not _well_formed(known):  # not there yet (or an entry edited by hand): ask pint
+        try:
+            factor, dim = _pint_info(unit)
+            known = [factor, [list(kv) for kv in dim.dims], dim.angle]
+        except ValueError as exc:
+            if len(unit) > _MEMO_ERRORS_UP_TO:  # hostile text must not grow the table
+                raise
+            known = {"error": str(exc)}
+        _memo().put(unit, known)
+    if isinstance(known, list):
+        factor, dims, angle = known
+        return factor, Dim(tuple((k, v) for k, v in dims), angle)
+    # pint refused it (the loader asks about SPICE suffixes such as 'k')
+    raise ValueError(known["error"])
+
+
+def _well_formed(known: object) -> bool:
+    """A memo entry as ``unit_info`` writes it: [factor, [[dimension, exponent], ...], angle]
+    or {"error": message}."""
+    if isinstance(known, dict):
+        return isinstance(known.get("error"), str)
+    return (isinstance(known, list) and len(known) == 3 and isinstance(known[1], list)
+            and all(isinstance(x, (int, float)) for x in (known[0], known[2]))
+            and all(isinstance(kv, list) and len(kv) == 2 and isinstance(kv[0], str)
+                    and isinstance(kv[1], (int, float)) for kv in known[1]))
+
+
+# [characters] refusals of longer unit text are not remembered across runs
+_MEMO_ERRORS_UP_TO = 24
+
+
+def _pint_info(unit: str) -> tuple[float, Dim]:
+    """``unit_info`` computed by pint."""
+    ureg = registry()
     # pint evaluates exponents as Python ints: 'm^9^9^9' would compute 9**387420489.
     if not all(_EXPONENT.match(unit, m.end()) for m in _POWER.finditer(unit)):
         raise ValueError(f"unknown unit '{unit}': an exponent must be a plain number "
@@ -91,6 +125,26 @@ def unit_info(unit: str) -> tuple[float, Dim]:
             and all(math.isfinite(v) for _, v in dim.dims)):
         raise ValueError(f"unit '{unit}' is out of range")
     return factor, dim
+
+
+@functools.lru_cache(maxsize=1)
+def _memo():
+    """Units pint has converted before, kept across runs: importing pint and building its
+    registry cost 0.2-0.3 s, more than a whole warm run should take. The table is named by
+    this file and by the installed pint, so an upgrade or an edit here starts a new one."""
+    import hashlib
+    import importlib.util
+    import os
+    from pathlib import Path
+
+    from circuitsim.memo import Memo
+
+    h = hashlib.sha256(Path(__file__).read_bytes())
+    spec = importlib.util.find_spec("pint")
+    if spec is not None and spec.origin:
+        st = os.stat(spec.origin)
+        h.update(f"{spec.origin}|{st.st_size}|{st.st_mtime_ns}".encode())
+    return Memo("units", h.hexdigest()[:16])
 
 
 def _si_and_dim(q) -> tuple[float, Dim]:

@@ -14,8 +14,6 @@ x_i = p theta - shift_i, so the back-EMF constant is K_i = i_r dL_ir/dtheta [V*s
 
 from __future__ import annotations
 
-import sympy as sp
-
 from circuitsim.component import (
     Branch,
     Component,
@@ -29,6 +27,7 @@ from circuitsim.component import (
     RecordList,
     Signal,
     register,
+    sp,
 )
 
 FOURIER = {

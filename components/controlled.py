@@ -8,9 +8,7 @@ Output sign as SPICE: a current source's current flows from p through it to n.
 
 from __future__ import annotations
 
-import sympy as sp
-
-from circuitsim.component import Branch, Component, Param, Pin, register
+from circuitsim.component import Branch, Component, Param, Pin, register, sp
 
 
 class _Controlled(Component):

@@ -2,9 +2,7 @@
 
 from __future__ import annotations
 
-import sympy as sp
-
-from circuitsim.component import Branch, OnePort, Option, Param, register
+from circuitsim.component import Branch, OnePort, Option, Param, register, sp
 from circuitsim_components.switches import toggle
 
 #: Above this many thermal voltages the exponential is continued by its tangent (as SPICE

@@ -7,8 +7,6 @@ phi_rel = a.phi - b.phi a spring takes tau = c phi_rel from shaft a and gives it
 
 from __future__ import annotations
 
-import sympy as sp
-
 from circuitsim.component import (
     Branch,
     Component,
@@ -19,6 +17,7 @@ from circuitsim.component import (
     Signal,
     TFlange,
     register,
+    sp,
 )
 
 

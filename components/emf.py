@@ -2,9 +2,7 @@
 
 from __future__ import annotations
 
-import sympy as sp
-
-from circuitsim.component import Converter, Option, Param, RecordList, register
+from circuitsim.component import Converter, Option, Param, RecordList, register, sp
 
 HARMONIC = {
     "order": Param("1", "harmonic order per shaft revolution", positive=True),

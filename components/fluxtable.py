@@ -8,9 +8,7 @@ the table acts as a breakpoint in the current, not in time).
 
 from __future__ import annotations
 
-import sympy as sp
-
-from circuitsim.component import Branch, Event, OnePort, Param, RecordList, register
+from circuitsim.component import Branch, Event, OnePort, Param, RecordList, register, sp
 from circuitsim_components.switches import BAND
 
 ROW = {"i": Param("A", "current of the row", positive=True),

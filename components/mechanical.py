@@ -6,9 +6,7 @@ flow into the element's flange, so the shaft receives -tau.
 
 from __future__ import annotations
 
-import sympy as sp
-
-from circuitsim.component import Branch, OneFlange, OneTFlange, Param, RecordList, register
+from circuitsim.component import Branch, OneFlange, OneTFlange, Param, RecordList, register, sp
 
 
 def _stribeck(w, f_brk, f_c, w_brk, b):

@@ -2,9 +2,9 @@
 
 from __future__ import annotations
 
-import sympy as sp
+import functools
 
-from circuitsim.component import Branch, Component, OnePort, Param, Pin, register
+from circuitsim.component import Branch, Component, OnePort, Param, Pin, register, sp
 
 
 @register("R", "resistor")
@@ -160,34 +160,41 @@ def _knee_text(r: str, atan: str, sqrt: str) -> str:
     return f"({', '.join(steps)})[-1]"
 
 
-class KneeU(sp.Function):
-    """u(r) with atan(u) = r u: a parameter function, computed numerically in the generated
-    code (a symbolic Newton iteration would grow threefold per step)."""
+@functools.cache
+def _knee_function() -> type:
+    """The sympy function KneeU, defined at its first use: defining a sympy Function imports
+    sympy, which a run served from the model cache never needs."""
 
-    nargs = 1
+    class KneeU(sp.Function):
+        """u(r) with atan(u) = r u: a parameter function, computed numerically in the generated
+        code (a symbolic Newton iteration would grow threefold per step)."""
 
-    def fdiff(self, argindex=1):
-        r = self.args[0]
-        return self / (1 / (1 + self**2) - r)  # implicit derivative of atan(u) - r u = 0
+        nargs = 1
 
-    def _eval_evalf(self, prec):
-        r = self.args[0]
-        if r.is_number:
-            return sp.Float(float(knee_u(float(r))), prec)
-        return None
+        def fdiff(self, argindex=1):
+            r = self.args[0]
+            return self / (1 / (1 + self**2) - r)  # implicit derivative of atan(u) - r u = 0
 
-    def _pythoncode(self, printer, **kw):
-        return _knee_text(printer._print(self.args[0]), "math.atan", "math.sqrt")
+        def _eval_evalf(self, prec):
+            r = self.args[0]
+            if r.is_number:
+                return sp.Float(float(knee_u(float(r))), prec)
+            return None
 
-    def _numpycode(self, printer, **kw):
-        return _knee_text(printer._print(self.args[0]), "numpy.arctan", "numpy.sqrt")
+        def _pythoncode(self, printer, **kw):
+            return _knee_text(printer._print(self.args[0]), "math.atan", "math.sqrt")
+
+        def _numpycode(self, printer, **kw):
+            return _knee_text(printer._print(self.args[0]), "numpy.arctan", "numpy.sqrt")
+
+    return KneeU
 
 
 def knee_current(Lzer, Linf, Lnom, Inom):
     """Ipar of the atan saturation law from a nominal (secant) inductance Lnom = psi/i at
     Inom, as Modelica's SaturatingInductor takes it: with u = Inom/Ipar and
     r = (Lnom - Linf)/(Lzer - Linf), atan(u) = r u."""
-    return Inom / KneeU((Lnom - Linf) / (Lzer - Linf))
+    return Inom / _knee_function()((Lnom - Linf) / (Lzer - Linf))
 
 
 @register("Lsat_nom", "saturating_inductor_nominal")

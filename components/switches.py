@@ -10,9 +10,17 @@ control found by the integrator (an event), and restarts from consistent values 
 
 from __future__ import annotations
 
-import sympy as sp
-
-from circuitsim.component import Branch, Event, OnePort, Option, Param, Pin, Signal, register
+from circuitsim.component import (
+    Branch,
+    Event,
+    OnePort,
+    Option,
+    Param,
+    Pin,
+    Signal,
+    register,
+    sp,
+)
 
 #: Hysteresis of a comparison with no hysteresis of its own (a time signal against 1/2, a
 #: carrier against a reference), in the units compared: after a switching the new guard must

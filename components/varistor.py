@@ -2,9 +2,7 @@
 
 from __future__ import annotations
 
-import sympy as sp
-
-from circuitsim.component import Branch, OnePort, Param, register
+from circuitsim.component import Branch, OnePort, Param, register, sp
 
 
 @register("varistor_rc")

@@ -9,9 +9,7 @@ from __future__ import annotations
 import math
 from typing import ClassVar
 
-import sympy as sp
-
-from circuitsim.component import Lookup, Param, Pmod, Waveform, register_waveform
+from circuitsim.component import Lookup, Param, Pmod, Waveform, register_waveform, sp
 
 
 def _ramp(u):

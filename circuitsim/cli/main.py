@@ -632,7 +632,14 @@ def _add_inspection(sub) -> None:
     k.set_defaults(func=cmd_components)
 
 
-def build_parser() -> argparse.ArgumentParser:
+# Verbs whose parser needs none of the study modules below
+CORE_VERBS = frozenset({"run", "sweep", "op", "ac", "pss", "check", "equations", "components"})
+
+
+def build_parser(argv: list[str] | None = None) -> argparse.ArgumentParser:
+    """The whole command line; for ``argv`` naming a core verb, without the study verbs
+    (fit, diagnose, identify), whose modules take ~50 ms to import and that argv cannot
+    reach (help and error messages that list every verb get the whole parser)."""
     import circuitsim
 
     ap = argparse.ArgumentParser(
@@ -649,8 +656,10 @@ def build_parser() -> argparse.ArgumentParser:
     # (each module keeps its top-level imports light: this runs on every CLI call).
     import importlib
 
-    for study in ("circuitsim.cli.fit", "circuitsim.cli.diagnose", "circuitsim.cli.identify"):
-        importlib.import_module(study).add_cli(sub)
+    if not (argv and argv[0] in CORE_VERBS):
+        for study in ("circuitsim.cli.fit", "circuitsim.cli.diagnose",
+                      "circuitsim.cli.identify"):
+            importlib.import_module(study).add_cli(sub)
     _add_inspection(sub)
     return ap
 
@@ -664,7 +673,8 @@ def main(argv: list[str] | None = None) -> int:
     try:
         if threading_main():
             signal.signal(signal.SIGTERM, _terminate)
-        args = build_parser().parse_args(argv)
+        argv = sys.argv[1:] if argv is None else argv
+        args = build_parser(argv).parse_args(argv)
         window = getattr(args, "window", 0.2)
         if window is not None and not 0 < window <= 1:
             print("error: --window is a fraction in (0, 1]", file=sys.stderr)

@@ -10,21 +10,13 @@ import hashlib
 import json
 import marshal
 import os
-import stat
 import sys
 from pathlib import Path
 from types import ModuleType
 
 from circuitsim.compiler.codegen import CODEGEN_VERSION
 from circuitsim.files import atomic_write
-
-
-def cache_dir() -> Path:
-    """Where compiled models live: $CIRCUITSIM_CACHE, else ~/.cache/circuitsim."""
-    env = os.environ.get("CIRCUITSIM_CACHE")
-    base = Path(env) if env else Path(os.environ.get("XDG_CACHE_HOME",
-                                                     Path.home() / ".cache")) / "circuitsim"
-    return base
+from circuitsim.memo import cache_dir, open_cache_dir  # noqa: F401 - cache_dir: public here
 
 
 def _code_fingerprint() -> str:
@@ -34,7 +26,7 @@ def _code_fingerprint() -> str:
 
     h = hashlib.sha256()
     root = Path(__file__).parents[1]
-    files = [root / "component.py", root / "units.py", root / "errors.py",
+    files = [root / "component.py", root / "symfunc.py", root / "units.py", root / "errors.py",
              *sorted((root / "netlist").glob("*.py")), *sorted((root / "compiler").glob("*.py")),
              *sorted(Path(circuitsim_components.__file__).parent.glob("*.py"))]
     for f in files:
@@ -55,30 +47,10 @@ _MEMORY: dict[str, tuple[str, dict]] = {}
 _WARNED: set[str] = set()
 
 
-def _unsafe(d: Path) -> str | None:
-    """Why the folder must not be trusted with code that will run, or None if it may: it
-    must belong to this user and be writable by no one else (anyone who can write there
-    could plant a module that runs at the next cache hit)."""
-    if not hasattr(os, "getuid"):  # Windows: per-user profile folders, no POSIX modes
-        return None
-    st = d.stat()
-    if st.st_uid != os.getuid():
-        return f"it belongs to user id {st.st_uid}, not to you"
-    if st.st_mode & 0o022:
-        return f"other users can write to it (mode {stat.S_IMODE(st.st_mode):o})"
-    return None
-
-
 def _usable() -> Path | None:
     """The cache folder, created private (0700) if missing; None if it is unsafe, with one
     warning per folder saying what to do."""
-    d = cache_dir()
-    try:
-        d.parent.mkdir(parents=True, exist_ok=True)
-        d.mkdir(mode=0o700, exist_ok=True)
-        why = _unsafe(d)
-    except OSError as exc:
-        why = f"it cannot be used ({exc.strerror})"
+    d, why = open_cache_dir()
     if why is None:
         return d
     if str(d) not in _WARNED:

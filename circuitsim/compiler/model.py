@@ -7,6 +7,7 @@ by topology. A CompiledModel is picklable (a sweep worker re-imports the cached 
 from __future__ import annotations
 
 import bisect
+import os
 import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -174,7 +175,10 @@ class CompiledModel:
         """Linear-solver options for ``sksundae.ida.IDA`` matching ``fns``' ``jac``."""
         _, jac, *_ = self.fns
         if self.linsolver == "dense":
-            return {"linsolver": "dense", "jacfn": jac}
+            opts = {"linsolver": "dense", "jacfn": jac}
+            if os.environ.get("CIRCUITSIM_KERNELS"):  # IDA may call compiled kernels
+                opts["kernels_of"] = (self, None)  # (solve/direct.py)
+            return opts
         import scipy.sparse as sps
 
         rows, cols = self.meta["jac_pattern"]

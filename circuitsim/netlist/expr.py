@@ -249,6 +249,25 @@ def names(node: Node) -> set[str]:
     return out
 
 
+def is_polynomial(node: Node) -> bool:
+    """True when the tree is only sums, differences and products of names and finite
+    numbers (with units): finite and real wherever its names are, so ``to_sympy``'s check
+    for ``x/0`` or ``sqrt(-1)`` cannot fail on it (and a loader need not import sympy)."""
+    stack = [node]
+    while stack:
+        n = stack.pop()
+        if n.kind == "num":
+            ok = math.isfinite(float(n.value))  # type: ignore[arg-type]
+        elif n.kind == "unit":
+            ok = math.isfinite(n.value[1])  # type: ignore[index]
+        else:
+            ok = n.kind in ("name", "neg") or (n.kind == "bin" and n.value in ("+", "-", "*"))
+        if not ok:
+            return False
+        stack.extend(n.args)
+    return True
+
+
 def evaluate(node: Node, env: Mapping[str, float]) -> float:
     """Numeric value in SI, names looked up in ``env`` (already SI floats)."""
     k = node.kind

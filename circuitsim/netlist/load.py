@@ -147,6 +147,33 @@ def _schema_validator():
     return jsonschema.Draft202012Validator(json.loads(SCHEMA_PATH.read_text()))
 
 
+def _schema_key(plain: Any) -> str | None:
+    """A digest naming a document exactly as the schema sees it (its JSON text), or None for
+    one JSON cannot write (a YAML date): that one is validated every time."""
+    try:
+        text = json.dumps(plain, sort_keys=True, allow_nan=False)
+    except (TypeError, ValueError):
+        return None
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()
+
+
+@lru_cache(maxsize=1)
+def _schema_memo():
+    """Documents that passed the schema in earlier runs, named by the schema and by the
+    installed jsonschema (an edit or an upgrade starts a new table)."""
+    import importlib.util
+    import os
+
+    from circuitsim.memo import Memo
+
+    h = hashlib.sha256(SCHEMA_PATH.read_bytes())
+    spec = importlib.util.find_spec("jsonschema")
+    if spec is not None and spec.origin:
+        st = os.stat(spec.origin)
+        h.update(f"{spec.origin}|{st.st_size}|{st.st_mtime_ns}".encode())
+    return Memo("schema", h.hexdigest()[:16])
+
+
 def _plain(obj: Any) -> Any:
     if isinstance(obj, Mapping):
         return {str(k): _plain(v) for k, v in obj.items()}
@@ -276,8 +303,14 @@ def _parse_yaml(path: Path, text: str) -> Any:
 
 
 def _check_schema(path: Path, doc: Any) -> None:
-    errors = sorted(_schema_validator().iter_errors(_plain(doc)), key=lambda e: list(e.path))
+    plain = _plain(doc)
+    key = _schema_key(plain)
+    if key is not None and _schema_memo().get(key):
+        return  # this very document passed before: no jsonschema import (0.1 s)
+    errors = sorted(_schema_validator().iter_errors(plain), key=lambda e: list(e.path))
     if not errors:
+        if key is not None:
+            _schema_memo().put(key, True)
         return
     err = errors[0]
     node, loc = doc, _loc(str(path), doc)
@@ -901,7 +934,8 @@ def _probes(raw: _Raw) -> dict[str, Probe]:
         except ex.ExprError as exc:
             raise NetlistError(f"probe '{name}': {exc}", loc) from None
         try:  # with every name a free symbol: catches 'x/0', 'sqrt(-1)' before codegen
-            ex.to_sympy(node, {n: _free_symbol(n) for n in ex.names(node)})
+            if not ex.is_polynomial(node):  # a sum of products cannot fail: no sympy
+                ex.to_sympy(node, {n: _free_symbol(n) for n in ex.names(node)})
         except NetlistError as exc:
             raise NetlistError(f"probe '{name}': {exc.bare}", loc) from None
         probes[name] = Probe(name, node, str(text), loc)

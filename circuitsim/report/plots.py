@@ -17,6 +17,13 @@ def _plain(text: str) -> str:
     return str(text).replace("$", r"\$")
 
 
+def _save(fig, path: str) -> None:
+    """Write ``fig`` as a PNG, whole or not at all. zlib level 1 instead of PIL's 6: the same
+    pixels in a file about 30 % larger, encoded in half the time (40 ms of a run's 1 s)."""
+    atomic_write(path, lambda p: fig.savefig(p, dpi=110, format="png",
+                                             pil_kwargs={"compress_level": 1}))
+
+
 def _pyplot():
     import matplotlib
 
@@ -53,7 +60,7 @@ def plot(res, path: str, names: list[str] | None = None, window: float | None = 
         title += f"\n({len(every) - len(shown)} more series not shown: choose with --probe)"
     fig.suptitle(title)
     fig.tight_layout()
-    atomic_write(path, lambda p: fig.savefig(p, dpi=110, format="png"))
+    _save(fig, path)
     plt.close(fig)
 
 
@@ -74,7 +81,7 @@ def _bode(res, path: str) -> None:
     for a in (a1, a2):
         a.grid(alpha=0.3, which="both")
     fig.tight_layout()
-    atomic_write(path, lambda p: fig.savefig(p, dpi=110, format="png"))
+    _save(fig, path)
     plt.close(fig)
 
 
@@ -111,5 +118,5 @@ def plot_sweep(rows: list[dict[str, Any]], x: str, y: str, path: str,
     if xs_all:
         ax.legend()
     fig.tight_layout()
-    atomic_write(path, lambda p: fig.savefig(p, dpi=110, format="png"))
+    _save(fig, path)
     plt.close(fig)

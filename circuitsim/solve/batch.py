@@ -14,6 +14,7 @@ member diverges) is re-run member by member, so each failure is reported for its
 from __future__ import annotations
 
 import dataclasses
+import os
 from collections.abc import Mapping, Sequence
 
 import numpy as np
@@ -122,6 +123,8 @@ def _stacked(model, run: Settings, ps: list[tuple], nearby: bool = False) -> Sys
             JJ[r_all, c_all] = np.concatenate(vals)
 
         opts.update(linsolver="band", lband=n - 1, uband=n - 1, jacfn=jac_all)
+        if os.environ.get("CIRCUITSIM_KERNELS"):  # IDA may call compiled kernels
+            opts["kernels_of"] = (model, ps)  # (solve/direct.py)
     else:  # block k's nonzeros are the k-th contiguous run of the compressed columns
         import scipy.sparse as sps
 

@@ -36,14 +36,23 @@ def _break_times(model, values: Mapping[str, float], stop: float) -> list[float]
 
 def make_ida(residual, opts: dict):
     """An IDA solver; the pattern given with our own Jacobian only sizes the sparse matrix
-    (scikit-sundae warns that its finite-difference use is ignored: that is intended)."""
+    (scikit-sundae warns that its finite-difference use is ignored: that is intended).
+    ``opts["kernels_of"]`` (set when ``CIRCUITSIM_KERNELS`` is) lets IDA call the model's
+    compiled kernels directly when it has them (solve/direct.py)."""
     import warnings
 
-    import sksundae as sun
+    from circuitsim.solve.sundae import ida_class
 
+    if "kernels_of" in opts:
+        from circuitsim.solve.direct import ida_for
+
+        direct = ida_for(opts)
+        if direct is not None:
+            return direct
+        opts = {k: v for k, v in opts.items() if k != "kernels_of"}
     with warnings.catch_warnings():
         warnings.filterwarnings("ignore", message="Custom sparse Jacobian approximation")
-        return sun.ida.IDA(residual, **opts)
+        return ida_class()(residual, **opts)
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,161 @@
+"""Whole-process time of a warm ``circuitsim run`` against ``ngspice -b`` on the same circuit.
+
+Run from anywhere::
+
+    python benchmarks/bench_startup.py               # ~1 min on 2 cores
+    python benchmarks/bench_startup.py --repeats 15 --json out.json
+
+What is timed (wall clock of a subprocess, ``time.perf_counter``; every command once per round,
+rounds interleaved so a load burst hits all of them; the minimum over rounds is the figure,
+the median is printed beside it):
+
+* ``circuitsim run netlists/kim2024/base.yaml --no-files`` with a warm model cache (a throw-away
+  ``CIRCUITSIM_CACHE`` filled by one cold run first), and the same writing the CSV and the PNG.
+  Bytecode is written (``PYTHONDONTWRITEBYTECODE`` is dropped for the subprocesses), as in an
+  installed package.
+* ``ngspice -b`` on the reference deck of the same model (``tests/ngspice.py::kim_base_deck``:
+  trapezoidal, reltol 1e-6, tmax 10 us, 0.3 s from rest), without output, and writing its
+  four waveforms with ``wrdata``.
+* The floor of any Python route through scikit-sundae: the interpreter alone, ``import numpy``,
+  and numpy + scikit-sundae's IDA imported the way circuitsim does (``solve/sundae.py``); plain
+  ``import sksundae`` (which pulls in scipy.optimize) and ``import circuitsim.cli.main`` for
+  comparison.
+
+Targets (issue #14): warm ``--no-files`` <= 2 x ``ngspice -b``; with CSV and PNG <= 1 s.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "tests"))
+
+from ngspice import have_ngspice, kim_base_deck
+
+NETLIST = "netlists/kim2024/base.yaml"
+TARGET_RATIO = 2.0  # warm --no-files / ngspice -b
+TARGET_FILES = 1.0  # [s] warm run writing CSV and PNG
+LEAN_IDA = "from circuitsim.solve.sundae import ida_class; ida_class()"
+HEAVY = ("sympy", "pint", "jsonschema", "scipy.optimize", "scipy.fft", "scipy.sparse",
+         "matplotlib")
+
+
+def circuitsim_cmd() -> list[str]:
+    """The console script beside this interpreter, else the launcher module."""
+    script = Path(sys.executable).with_name("circuitsim")
+    return [str(script)] if script.exists() else [sys.executable, "-m", "circuitsim_launch"]
+
+
+def ngspice_deck(folder: Path, with_output: bool) -> Path:
+    lines = kim_base_deck(t_stop=0.3, tmax=10e-6).rstrip().splitlines()
+    while lines and lines[-1].strip().lower() in (".end", ""):
+        lines.pop()
+    data = folder / "out.dat"
+    control = ["run", f"wrdata {data} i(vsup) i(vmot) v(w) v(th)"] if with_output else ["run"]
+    path = folder / ("deck_out.cir" if with_output else "deck.cir")
+    path.write_text("\n".join([*lines, ".control", *control, "quit", ".endc", ".end"]) + "\n")
+    return path
+
+
+def commands(work: Path) -> dict[str, list[str]]:
+    cs = circuitsim_cmd()
+    py = sys.executable
+    out = {
+        "circuitsim run --no-files (warm)": [*cs, "run", NETLIST, "--no-files", "--quiet"],
+        "circuitsim run, CSV + PNG (warm)": [*cs, "run", NETLIST, "--quiet", "--out",
+                                             str(work / "base.csv"), "--plot",
+                                             str(work / "base.png")],
+        "floor: python -c pass": [py, "-c", "pass"],
+        "floor: import numpy": [py, "-c", "import numpy"],
+        "floor: numpy + IDA (lean import)": [py, "-c", LEAN_IDA],
+        "for comparison: import sksundae": [py, "-c", "import sksundae"],
+        "for comparison: import circuitsim.cli.main": [py, "-c", "import circuitsim.cli.main"],
+    }
+    if have_ngspice():
+        out["ngspice -b"] = ["ngspice", "-b", str(ngspice_deck(work, False))]
+        out["ngspice -b, wrdata"] = ["ngspice", "-b", str(ngspice_deck(work, True))]
+    return out
+
+
+def timed(cmd: list[str], env: dict[str, str], cwd: Path) -> float:
+    t0 = time.perf_counter()
+    proc = subprocess.run(cmd, cwd=cwd, env=env, capture_output=True, text=True, check=False)
+    wall = time.perf_counter() - t0
+    if proc.returncode != 0:
+        raise RuntimeError(f"{' '.join(cmd)} failed:\n{proc.stderr[-2000:]}")
+    return wall
+
+
+def heavy_imports(env: dict[str, str]) -> list[str]:
+    """Heavy modules a warm ``run --no-files`` has imported by its end."""
+    code = ("import contextlib, io, sys, warnings\nwarnings.simplefilter('ignore')\n"
+            "from circuitsim.cli.main import main\n"
+            "with contextlib.redirect_stdout(io.StringIO()):\n"
+            f"    main(['run', {NETLIST!r}, '--no-files', '--quiet'])\n"
+            f"print(' '.join(m for m in {HEAVY!r} if m in sys.modules))")
+    out = subprocess.run([sys.executable, "-c", code], cwd=ROOT, env=env, capture_output=True,
+                         text=True, check=True)
+    return out.stdout.split()
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--repeats", type=int, default=9, help="rounds (default 9)")
+    ap.add_argument("--json", help="also write the results to this JSON file")
+    args = ap.parse_args(argv)
+
+    work = Path(tempfile.mkdtemp(prefix="bench-startup-"))
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
+    env["CIRCUITSIM_CACHE"] = str(work / "cache")
+    env.setdefault("MPLBACKEND", "Agg")
+    cmds = commands(work)
+    first = next(iter(cmds.values()))
+    cold = timed(first, env, ROOT)  # derives the model and writes the bytecode
+    times: dict[str, list[float]] = {name: [] for name in cmds}
+    for _ in range(args.repeats):
+        for name, cmd in cmds.items():
+            times[name].append(timed(cmd, env, ROOT))
+    best = {name: min(v) for name, v in times.items()}
+    heavy = heavy_imports(env)
+    shutil.rmtree(work, ignore_errors=True)
+    report(best, times, cold, heavy, args.repeats)
+    if args.json:
+        Path(args.json).write_text(json.dumps({"best": best, "times": times, "cold": cold,
+                                               "heavy": heavy}, indent=1))
+    return 0
+
+
+def report(best: dict[str, float], times: dict[str, list[float]], cold: float,
+           heavy: list[str], repeats: int) -> None:
+    ng = best.get("ngspice -b")
+    print(f"warm circuitsim run against ngspice -b, Kim & Kim base model (0.3 s from rest); "
+          f"wall clock, minimum (median) of {repeats} interleaved rounds [s]")
+    for name, value in best.items():
+        ratio = f"{value / ng:5.2f}x ngspice -b" if ng else ""
+        print(f"  {name:44} {value:6.3f} ({statistics.median(times[name]):6.3f})  {ratio}")
+    print(f"  cold run (derivation, code generation, bytecode): {cold:.2f} s")
+    print(f"  heavy modules imported by a warm run: {', '.join(heavy) or 'none'}")
+    warm, files = best["circuitsim run --no-files (warm)"], best["circuitsim run, CSV + PNG (warm)"]
+    floor = best["floor: numpy + IDA (lean import)"]
+    print("targets")
+    if ng:
+        verdict = "MET" if warm <= TARGET_RATIO * ng else "MISSED"
+        print(f"  warm --no-files <= {TARGET_RATIO:g} x ngspice -b: {warm:.3f} s / {ng:.3f} s = "
+              f"{warm / ng:.2f}x -> {verdict} (import floor alone {floor:.3f} s = "
+              f"{floor / ng:.2f}x)")
+    print(f"  with CSV and PNG <= {TARGET_FILES:g} s: {files:.3f} s -> "
+          f"{'MET' if files <= TARGET_FILES else 'MISSED'}")
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

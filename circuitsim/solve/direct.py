@@ -1,0 +1,235 @@
+"""IDA calling compiled kernels directly: no Python per residual call (``pip install .[fast]``).
+
+scikit-sundae calls the model through a Python callback, about 4.5 µs a call on top of the
+residual's own arithmetic; that wrapper, not IDA, is most of a small model's solve. With numba
+installed and ``CIRCUITSIM_KERNELS=numba`` set, a model whose generated module carries kernels
+(``codegen._kernels``: the residual and the dense Jacobian as numba ``cfunc``s and the loop over
+the output times, compiled once and kept by numba beside the model in the cache folder) is
+integrated by the same IDA, scikit-sundae's bundled SUNDIALS libraries loaded with ctypes, with
+the same options: the same steps and the same numbers, to the bit, many times faster
+(``benchmarks/bench_compiled_route.py``). Importing numba and loading the kernels costs about
+half a second per process, so it pays from a handful of solves in one process (sweeps,
+scripts, fits); it is off by default. Batches of K members stacked in one band system
+(``solve/batch.py``) run on stacked kernels. Models without kernels (run-time tables, 100
+unknowns or more), the sparse solver and event functions stay with scikit-sundae.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import functools
+import importlib.util
+import os
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+
+def wanted() -> bool:
+    """Kernels asked for (``CIRCUITSIM_KERNELS=numba``) and numba installed."""
+    return (os.environ.get("CIRCUITSIM_KERNELS", "").lower() == "numba"
+            and importlib.util.find_spec("numba") is not None)
+
+
+@dataclass
+class Result:
+    """What ``integrate`` reads of scikit-sundae's IDAResult."""
+
+    t: np.ndarray
+    y: np.ndarray
+    yp: np.ndarray
+    success: bool
+    message: str
+    nfev: int
+    njev: int
+
+
+@functools.cache
+def _libraries() -> dict[str, Any]:
+    """scikit-sundae's bundled SUNDIALS libraries, with the signatures used here."""
+    from circuitsim.solve.sundae import ida_class
+
+    ida_class()  # the libraries are loaded with scikit-sundae's own modules
+    spec = importlib.util.find_spec("sksundae")
+    folder = Path(spec.origin).parent.parent / "scikit_sundae.libs"
+    lib = {name: ctypes.CDLL(str(next(folder.glob(f"libsundials_{name}-*.so*"))),
+                             mode=ctypes.RTLD_GLOBAL)
+           for name in ("core", "nvecserial", "sunmatrixdense", "sunlinsoldense",
+                        "sunmatrixband", "sunlinsolband", "ida")}
+    vp, dbl, i32, lng = ctypes.c_void_p, ctypes.c_double, ctypes.c_int, ctypes.c_long
+    for name, res, args in _signatures(vp, dbl, i32, lng):
+        owner, fn = name.split(".")
+        f = getattr(lib[owner], fn)
+        f.restype, f.argtypes = res, args
+    return lib
+
+
+def _signatures(vp, dbl, i32, lng) -> list:
+    ptr = ctypes.POINTER
+    return [("core.SUNContext_Create", i32, [i32, ptr(vp)]),
+            ("core.SUNContext_ClearErrHandlers", i32, [vp]),
+            ("core.SUNContext_Free", i32, [ptr(vp)]),
+            ("core.N_VGetArrayPointer", ptr(dbl), [vp]), ("core.N_VDestroy", None, [vp]),
+            ("core.SUNMatDestroy", None, [vp]), ("core.SUNLinSolFree", i32, [vp]),
+            ("nvecserial.N_VNew_Serial", vp, [i32, vp]),
+            ("sunmatrixdense.SUNDenseMatrix", vp, [i32, i32, vp]),
+            ("sunlinsoldense.SUNLinSol_Dense", vp, [vp, vp, vp]),
+            ("sunmatrixband.SUNBandMatrix", vp, [i32, i32, i32, vp]),
+            ("sunlinsolband.SUNLinSol_Band", vp, [vp, vp, vp]),
+            ("ida.IDACreate", vp, [vp]), ("ida.IDAInit", i32, [vp, vp, dbl, vp, vp]),
+            ("ida.IDAFree", None, [ptr(vp)]), ("ida.IDASStolerances", i32, [vp, dbl, dbl]),
+            ("ida.IDASetLinearSolver", i32, [vp, vp, vp]), ("ida.IDASetJacFn", i32, [vp, vp]),
+            ("ida.IDASetUserData", i32, [vp, vp]), ("ida.IDASetMaxNumSteps", i32, [vp, lng]),
+            ("ida.IDASetMaxStep", i32, [vp, dbl]), ("ida.IDASetId", i32, [vp, vp]),
+            ("ida.IDASetStopTime", i32, [vp, dbl]),
+            ("ida.IDASolve", i32, [vp, dbl, ptr(dbl), vp, vp, i32]),
+            ("ida.IDAGetNumResEvals", i32, [vp, ptr(lng)]),
+            ("ida.IDAGetNumJacEvals", i32, [vp, ptr(lng)])]
+
+
+_LOADED: dict[str, Any] = {}
+
+
+def kernels(model) -> Any | None:
+    """The model's compiled kernels (a module with ``residual`` and ``jacobian``), or None.
+
+    The kernel source comes from the hash-checked cache entry; it is written beside it as a
+    file so that numba can keep the machine code (in the folder's ``__pycache__``) for the next
+    process. Only a folder the model cache trusts is used."""
+    from circuitsim.memo import open_cache_dir
+
+    source = model.meta.get("kernels")
+    if not source or model.linsolver != "dense" or "residual_batch" not in source:
+        return None
+    if model.key in _LOADED:
+        return _LOADED[model.key]
+    folder, why = open_cache_dir()
+    if why is not None:
+        return None
+    path = folder / f"{model.key}_kernels.py"
+    if not path.exists() or path.read_text(encoding="utf-8") != source:
+        from circuitsim.files import atomic_write
+
+        atomic_write(path, source)
+    spec = importlib.util.spec_from_file_location(f"circuitsim_kernels_{model.key}", path)
+    module = importlib.util.module_from_spec(spec)
+    # registered first: numba's cached code names the module's own helpers by module name
+    sys.modules[spec.name] = module
+    spec.loader.exec_module(module)
+    _LOADED[model.key] = module
+    return module
+
+
+class DirectIDA:
+    """IDA with the kernels of one model: the part of scikit-sundae's ``IDA`` that
+    ``integrate`` uses (``solve`` over a time span), with the same options."""
+
+    def __init__(self, module, opts: dict, members: list | None = None):
+        self.module, self.opts = module, opts
+        # one model, or K members stacked (solve/batch.py: band solver, K parameter vectors)
+        self.members = members
+
+    def solve(self, tspan, y0, yp0) -> Result:
+        """Outputs at ``tspan[1:]`` (a two-point span: the end only), stopping at its end."""
+        lib, tspan = _libraries(), np.asarray(tspan, dtype=float)
+        ctx = ctypes.c_void_p()
+        lib["core"].SUNContext_Create(0, ctypes.byref(ctx))
+        lib["core"].SUNContext_ClearErrHandlers(ctx)  # failures are reported in the Result
+        held = self._setup(lib, ctx, tspan[0], y0, yp0)
+        try:
+            return self._run(lib, held, tspan)
+        finally:
+            self._free(lib, ctx, held)
+
+    def _setup(self, lib, ctx, t0: float, y0, yp0) -> dict:
+        """The SUNDIALS objects of one solve, set up as scikit-sundae sets them (its defaults
+        are SUNDIALS' own: 4 Newton iterations, 10 convergence failures, order 5)."""
+        core, ida, n, o = lib["core"], lib["ida"], len(y0), self.opts
+        h: dict[str, Any] = {"n": n, "module": self.module}
+        h["yy"], h["yp"], h["id"] = (lib["nvecserial"].N_VNew_Serial(n, ctx) for _ in range(3))
+        for name, vec, value in (("Y", "yy", y0), ("YP", "yp", yp0), ("ID", "id", 1.0)):
+            h[name] = np.ctypeslib.as_array(core.N_VGetArrayPointer(h[vec]), (n,))
+            h[name][:] = value
+        h["ID"][list(o.get("algebraic_idx") or [])] = 0.0
+        h["p"], residual, jacobian = self._kernels_and_data()
+        mem = h["mem"] = ctypes.c_void_p(ida.IDACreate(ctx))
+        ida.IDASetUserData(mem, h["p"].ctypes.data)
+        ida.IDAInit(mem, residual.address, float(t0), h["yy"], h["yp"])
+        if self.members is None:
+            h["A"] = lib["sunmatrixdense"].SUNDenseMatrix(n, n, ctx)
+            h["LS"] = lib["sunlinsoldense"].SUNLinSol_Dense(h["yy"], h["A"], ctx)
+        else:
+            h["A"] = lib["sunmatrixband"].SUNBandMatrix(n, o["uband"], o["lband"], ctx)
+            h["LS"] = lib["sunlinsolband"].SUNLinSol_Band(h["yy"], h["A"], ctx)
+        ida.IDASetLinearSolver(mem, h["LS"], h["A"])
+        ida.IDASetJacFn(mem, jacobian.address)
+        ida.IDASStolerances(mem, float(o["rtol"]), float(o["atol"]))
+        ida.IDASetId(mem, h["id"])
+        ida.IDASetMaxStep(mem, float(o.get("max_step") or 0.0))
+        ida.IDASetMaxNumSteps(mem, int(o.get("max_num_steps", 500)))
+        return h
+
+    def _kernels_and_data(self) -> tuple[np.ndarray, Any, Any]:
+        """The user data (the parameters; for a batch K, then each member's) and the two
+        kernels. At least one entry: the kernels read p[0] when a model has none."""
+        m = self.module
+        if self.members is None:
+            p = list(self.opts["userdata"])
+            return np.array(p + [0.0] * (not p), dtype=float), m.residual, m.jacobian
+        data = [float(len(self.members))] + [v for q in self.members for v in q]
+        return np.array(data, dtype=float), m.residual_batch, m.jacobian_band
+
+    @staticmethod
+    def _run(lib, h: dict, tspan: np.ndarray) -> Result:
+        from circuitsim.solve.sundae import ida_messages
+
+        ida, n = lib["ida"], h["n"]
+        out_y, out_yp = np.empty((tspan.size, n)), np.empty((tspan.size, n))
+        out_t = np.empty(tspan.size)
+        out_t[0], out_y[0], out_yp[0] = tspan[0], h["Y"], h["YP"]
+        ida.IDASetStopTime(h["mem"], float(tspan[-1]))
+        # the loop over the output times is compiled too (2 µs an output time in Python)
+        k, flag = h["module"].outputs(h["mem"].value, h["yy"], h["yp"], tspan, h["Y"],
+                                      h["YP"], out_t, out_y, out_yp)
+        counts = [ctypes.c_long(), ctypes.c_long()]
+        ida.IDAGetNumResEvals(h["mem"], ctypes.byref(counts[0]))
+        ida.IDAGetNumJacEvals(h["mem"], ctypes.byref(counts[1]))
+        return Result(out_t[:k], out_y[:k], out_yp[:k], flag >= 0,
+                      ida_messages().get(flag, f"IDA flag {flag}"), counts[0].value,
+                      counts[1].value)
+
+    @staticmethod
+    def _free(lib, ctx, h: dict) -> None:
+        lib["ida"].IDAFree(ctypes.byref(h["mem"]))
+        lib["core"].SUNLinSolFree(h["LS"])
+        lib["core"].SUNMatDestroy(h["A"])
+        for vec in ("yy", "yp", "id"):
+            lib["core"].N_VDestroy(h[vec])
+        lib["core"].SUNContext_Free(ctypes.byref(ctx))
+
+
+def ida_for(opts: dict) -> DirectIDA | None:
+    """A DirectIDA for ``opts["kernels_of"]`` = (model, None) or, for a stacked batch, (model,
+    members' parameter vectors) when kernels are wanted and the model has them, else None
+    (also, with one warning, when they cannot be built: the Python route then runs)."""
+    model, members = opts["kernels_of"]
+    solver = "band" if members is not None else "dense"
+    if not wanted() or opts.get("linsolver") != solver or opts.get("eventsfn"):
+        return None
+    try:
+        module = kernels(model)
+        _libraries()  # found on Linux wheels; elsewhere this fails and the usual route runs
+    except Exception as exc:  # noqa: BLE001 - numba and the libraries fail in many ways
+        import warnings
+
+        from circuitsim.errors import CircuitWarning
+
+        _LOADED[model.key] = None
+        why = (str(exc).strip().splitlines() or [""])[0][:200]
+        warnings.warn(f"compiled kernels unavailable ({type(exc).__name__}: {why}); the "
+                      f"Python residual is used", CircuitWarning, stacklevel=3)
+        return None
+    return DirectIDA(module, opts, members) if module is not None else None

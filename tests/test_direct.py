@@ -1,0 +1,135 @@
+"""IDA calling the compiled kernels directly (``CIRCUITSIM_KERNELS=numba``, needs numba) gives
+the same steps and the same numbers as scikit-sundae calling the Python residual (#14)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import circuitsim as cs
+
+from conftest import NETLISTS
+
+pytest.importorskip("numba")
+pytestmark = pytest.mark.filterwarnings("ignore::circuitsim.errors.CircuitWarning")
+
+
+def _both(model, monkeypatch, **kw):
+    monkeypatch.delenv("CIRCUITSIM_KERNELS", raising=False)
+    python = model.simulate(**kw)
+    monkeypatch.setenv("CIRCUITSIM_KERNELS", "numba")
+    return python, model.simulate(**kw)
+
+
+def _same(a, b) -> None:
+    assert a.success and b.success
+    assert (a.nfev, a.njev) == (b.nfev, b.njev)
+    for x, y in ((a.t, b.t), (a.y, b.y), (a.yp, b.yp)):
+        assert np.array_equal(x, y)
+
+
+def test_base_model_to_the_bit(monkeypatch):
+    from circuitsim.solve import direct
+
+    model = cs.compile(cs.load(NETLISTS / "kim2024" / "base.yaml"))
+    assert model.meta["kernels"]
+    python, kernels = _both(model, monkeypatch, stop=0.05)
+    assert direct.kernels(model) is not None  # the direct route did run
+    _same(python, kernels)
+
+
+def test_corners_restarts_and_a_max_step(compile_text, monkeypatch):
+    """A pulse source: integration restarts at every corner; its period bounds the step."""
+    model = compile_text("""
+        components:
+          - {name: V1, type: V, p: a, n: gnd, V: {pulse: {v1: 0, v2: 5, delay: 1 ms,
+             rise: 10 us, fall: 10 us, width: 2 ms, period: 5 ms}}}
+          - {name: R1, type: R, p: a, n: b, R: 1k}
+          - {name: L1, type: L, p: b, n: c, L: 10 mH}
+          - {name: C1, type: C, p: c, n: gnd, C: 1 uF}
+        probes: {vc: c.v}
+        analysis: {stop: 20 ms, step: 10 us}
+    """)
+    _same(*_both(model, monkeypatch))
+
+
+def test_periodic_steady_state_alike(monkeypatch):
+    from circuitsim.solve.pss import periodic_steady_state
+
+    model = cs.compile(cs.load(NETLISTS / "kim2024" / "base.yaml"))
+    monkeypatch.delenv("CIRCUITSIM_KERNELS", raising=False)
+    a = periodic_steady_state(model, order=8).harmonic("i_total", 1)
+    monkeypatch.setenv("CIRCUITSIM_KERNELS", "numba")
+    b = periodic_steady_state(model, order=8).harmonic("i_total", 1)
+    assert a == b
+
+
+def test_a_model_reading_a_table_keeps_the_python_route(compile_text, tmp_path, monkeypatch):
+    """A measured column is a Python callable at run time: no kernels, the usual route."""
+    (tmp_path / "in.csv").write_text("time,v\n0,0\n0.001,2\n0.003,2\n0.004,-1\n")
+    model = compile_text("""
+        components:
+          - {name: V1, type: V, p: in, n: gnd, V: {table: {file: in.csv, column: v}}}
+          - {name: R1, type: R, p: in, n: out, R: 1k}
+          - {name: C1, type: C, p: out, n: gnd, C: 1u}
+        probes: {vout: out.v}
+        analysis: {stop: 5 ms, step: 10 us}
+    """)
+    assert model.meta["kernels"] is None
+    _same(*_both(model, monkeypatch))
+
+
+def test_a_small_pwl_table_runs_compiled(compile_text, tmp_path, monkeypatch):
+    """Points written in the netlist or a short CSV become a Piecewise of parameters."""
+    (tmp_path / "pts.csv").write_text("time,v\n0,0\n0.001,2\n0.003,2\n0.004,-1\n")
+    model = compile_text("""
+        components:
+          - {name: V1, type: V, p: in, n: gnd, V: {pwl: {file: pts.csv, column: v}}}
+          - {name: R1, type: R, p: in, n: out, R: 1k}
+          - {name: C1, type: C, p: out, n: gnd, C: 1u}
+        probes: {vout: out.v}
+        analysis: {stop: 5 ms, step: 10 us}
+    """)
+    assert model.meta["kernels"]
+    _same(*_both(model, monkeypatch))
+
+
+def test_no_libraries_means_the_usual_route_and_one_warning(compile_text, monkeypatch):
+    """scikit-sundae's libraries not where a Linux wheel has them: a warning, then the
+    Python residual, with the same result."""
+    from circuitsim.errors import CircuitWarning
+    from circuitsim.solve import direct
+
+    model = compile_text("""
+        components:
+          - {name: V1, type: V, p: a, n: gnd, V: {step: {v0: 0, v1: 1, t0: 1 ms, rise: 0.1 ms}}}
+          - {name: R1, type: R, p: a, n: b, R: 1k}
+          - {name: C1, type: C, p: b, n: gnd, C: 1 uF}
+        probes: {vc: b.v}
+        analysis: {stop: 5 ms, step: 10 us}
+    """)
+
+    def missing():
+        raise StopIteration("no libsundials_ida")
+
+    monkeypatch.setattr(direct, "_libraries", missing)
+    monkeypatch.delenv("CIRCUITSIM_KERNELS", raising=False)
+    python = model.simulate()
+    monkeypatch.setenv("CIRCUITSIM_KERNELS", "numba")
+    with pytest.warns(CircuitWarning, match="compiled kernels unavailable"):
+        fallback = model.simulate()
+    _same(python, fallback)
+
+
+def test_a_batch_runs_stacked_kernels_to_the_bit(monkeypatch):
+    """K members in one band system, as fit and diagnose integrate them."""
+    from circuitsim.solve.batch import simulate_batch
+
+    model = cs.compile(cs.load(NETLISTS / "kim2024" / "base.yaml"))
+    sets = [{"Ra": 1.1 * (1 + 1e-4 * j)} for j in range(4)]
+    monkeypatch.delenv("CIRCUITSIM_KERNELS", raising=False)
+    python = simulate_batch(model, sets, stop=0.02)
+    monkeypatch.setenv("CIRCUITSIM_KERNELS", "numba")
+    kernels = simulate_batch(model, sets, stop=0.02)
+    for a, b in zip(python, kernels, strict=True):
+        _same(a, b)
