@@ -7,7 +7,6 @@ by topology. A CompiledModel is picklable (a sweep worker re-imports the cached 
 from __future__ import annotations
 
 import bisect
-import os
 import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -18,6 +17,7 @@ import numpy as np
 from circuitsim.compiler import cache, codegen
 from circuitsim.errors import CircuitWarning, ParameterError
 from circuitsim.netlist.load import Netlist
+from circuitsim.solve.route import kernels_requested
 
 
 def _near(name: str, options) -> str:
@@ -176,7 +176,7 @@ class CompiledModel:
         _, jac, *_ = self.fns
         if self.linsolver == "dense":
             opts = {"linsolver": "dense", "jacfn": jac}
-            if os.environ.get("CIRCUITSIM_KERNELS"):  # IDA may call compiled kernels
+            if kernels_requested():  # IDA may call compiled kernels
                 opts["kernels_of"] = (self, None)  # (solve/direct.py)
             return opts
         import scipy.sparse as sps

@@ -897,10 +897,7 @@ def fit_record(model, record: Record, free: Sequence[str], *,
         With ``kind='record'``, ``sim`` the fitted transient, ``residuals[probe]`` = measured -
         model on the (working) record's grid, ``errors[probe]`` the NRMSE, ``reduction``.
     """
-    from circuitsim.loop.reduce import reduce_record
-
-    record, reduction = reduce_record(record, _probes_of(model, record, probes),
-                                      progress=progress) if reduce else (record, None)
+    record, reduction = _working_record(model, record, probes, reduce, progress)
     prob = _RecordProblem(model, record, free, dict(params or {}), bounds, probes, weights,
                           rtol, atol, progress)
     z = np.zeros(len(free))
@@ -917,6 +914,17 @@ def fit_record(model, record: Record, free: Sequence[str], *,
     prob.stage = "uncertainty"
     result = prob.result(z, step, ok, msg, nfev, stages)
     return dataclasses.replace(result, reduction=reduction)
+
+
+def _working_record(model, record: Record, probes, reduce: bool, progress):
+    """The record a fit works on (``loop.reduce``), and what its reduction did."""
+    from circuitsim.loop.reduce import reduce_record
+    from circuitsim.solve.route import many_solves
+
+    many_solves()  # a fit solves one topology many times
+    if not reduce:
+        return record, None
+    return reduce_record(record, _probes_of(model, record, probes), progress=progress)
 
 
 def _run_stages(prob: _RecordProblem, z: np.ndarray, step: np.ndarray, staged: bool | None,

@@ -14,7 +14,6 @@ member diverges) is re-run member by member, so each failure is reported for its
 from __future__ import annotations
 
 import dataclasses
-import os
 from collections.abc import Mapping, Sequence
 
 import numpy as np
@@ -32,6 +31,7 @@ from circuitsim.solve.integrate import (
     simulate,
 )
 from circuitsim.solve.result import SimResult, Status
+from circuitsim.solve.route import kernels_requested
 from circuitsim.solve.sources import bound_step
 
 
@@ -123,7 +123,7 @@ def _stacked(model, run: Settings, ps: list[tuple], nearby: bool = False) -> Sys
             JJ[r_all, c_all] = np.concatenate(vals)
 
         opts.update(linsolver="band", lband=n - 1, uband=n - 1, jacfn=jac_all)
-        if os.environ.get("CIRCUITSIM_KERNELS"):  # IDA may call compiled kernels
+        if kernels_requested():  # IDA may call compiled kernels
             opts["kernels_of"] = (model, ps)  # (solve/direct.py)
     else:  # block k's nonzeros are the k-th contiguous run of the compressed columns
         import scipy.sparse as sps

@@ -19,7 +19,6 @@ from __future__ import annotations
 import ctypes
 import functools
 import importlib.util
-import os
 import sys
 from dataclasses import dataclass
 from pathlib import Path
@@ -27,11 +26,12 @@ from typing import Any
 
 import numpy as np
 
+from circuitsim.solve.route import kernels_requested
+
 
 def wanted() -> bool:
-    """Kernels asked for (``CIRCUITSIM_KERNELS=numba``) and numba installed."""
-    return (os.environ.get("CIRCUITSIM_KERNELS", "").lower() == "numba"
-            and importlib.util.find_spec("numba") is not None)
+    """Kernels asked for (``solve/route.py``) and numba installed."""
+    return kernels_requested() and importlib.util.find_spec("numba") is not None
 
 
 @dataclass

@@ -129,6 +129,9 @@ def _run_one(model, run: Run, metrics: Metrics) -> dict[str, Any]:
     """Worker: simulate one grid point and reduce it to a row (never raises)."""
     from circuitsim import signal
     from circuitsim.solve.energy import energy_audit
+    from circuitsim.solve.route import many_solves
+
+    many_solves()  # a sweep's process solves its topology many times
 
     row: dict[str, Any] = {"netlist": run.netlist, **run.params}
     t0 = time.perf_counter()

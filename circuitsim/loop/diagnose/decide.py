@@ -35,6 +35,14 @@ from circuitsim.loop.diagnose.screen import on_waveform
 
 BIC_MARGIN = 10.0  # "very strong" evidence on the Kass-Raftery scale
 STRUCTURE_SHARE = 0.3  # share of the residual's significant structure an effect must explain
+#: Where the residual's sum of squares is more than (1 + LARGE_EXCESS) times what white noise
+#: at each probe's level gives (ten times: far beyond a few per cent of error in that level,
+#: or what coloured noise adds), an effect must remove at least EXCESS_SHARE of the excess:
+#: prewhitening learnt on a residual that is mostly a smooth transient whitens most of that
+#: transient away, and a small correction of the fast part (a sensor delay on a torsional
+#: resonance) can then look like most of what is left.
+LARGE_EXCESS = 9.0
+EXCESS_SHARE = 0.1
 
 
 @dataclass
@@ -49,12 +57,20 @@ class Trial:
     note: str = ""
     sse_before: float = 0.0
     sse_after: float = 0.0
+    floor: float = 0.0  # the weighted sum of squares the noise alone would give
     evidence: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def small_of_large(self) -> bool:
+        """It removes little of a residual far above the noise (see LARGE_EXCESS)."""
+        excess = self.sse_before - self.floor
+        return excess > LARGE_EXCESS * self.floor and \
+            self.sse_before - self.sse_after < EXCESS_SHARE * excess
 
     @property
     def passed(self) -> bool:
         return self.delta_bic < -BIC_MARGIN and self.share >= STRUCTURE_SHARE and \
-            not self.at_bound
+            not self.at_bound and not self.small_of_large
 
     @property
     def key(self) -> str:
@@ -118,6 +134,7 @@ def judge(setup: Setup, state: ModelState, trial: Trial) -> Trial:
     trial.at_bound = _at_bound(trial)
     trial.sse_before, trial.sse_after = weighted_sse(setup, state.fit), \
         weighted_sse(setup, trial.fit)
+    trial.floor = float(setup.n * len(probes))  # residuals are in units of each probe's noise
     trial.note = _note(trial)
     return trial
 
@@ -141,6 +158,10 @@ def _note(trial: Trial) -> str:
         return f"fits only with {', '.join(trial.at_bound)} at the edge of its physical range"
     if trial.delta_bic >= -BIC_MARGIN:
         return f"not significant (ΔBIC {trial.delta_bic:.1f} on prewhitened residuals)"
+    if trial.small_of_large:
+        return (f"significant (ΔBIC {trial.delta_bic:.1f}) but removes only "
+                f"{(trial.sse_before - trial.sse_after) / (trial.sse_before - trial.floor):.0%}"
+                f" of a residual far above the noise")
     if trial.share < STRUCTURE_SHARE:
         return (f"significant (ΔBIC {trial.delta_bic:.1f}) but explains only "
                 f"{trial.share:.0%} of the structure the residual holds")

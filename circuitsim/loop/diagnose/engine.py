@@ -76,6 +76,9 @@ def diagnose(netlist, record, free: Sequence[str] = (), *, probes: Sequence[str]
     """
     from circuitsim.loop.reduce import reduce_record
     from circuitsim.netlist.load import Netlist, load
+    from circuitsim.solve.route import many_solves
+
+    many_solves()  # hundreds of solves of a few topologies
 
     start = time.perf_counter()
     net = netlist if isinstance(netlist, Netlist) else load(netlist)
