@@ -136,12 +136,15 @@ def _alive(pid: int) -> bool:
 SLOW_SWEEP = ("import sys; from circuitsim.cli.main import main; sys.exit(main(['sweep', "
               "{net!r}, '--set', 'R=1k,2k,3k,4k,5k,6k', '--jobs', '2', '--stop', '20', "
               "'--no-energy', '--quiet', '--out', {out!r}]))")
+# the Python route: compiled kernels would finish the sweep before the signal arrives
+SLOW_ENV = {**os.environ, "CIRCUITSIM_KERNELS": "python"}
 
 
 @pytest.mark.skipif(not Path("/proc/self/task").exists(), reason="needs Linux /proc")
 def test_workers_die_with_a_killed_parent(tmp_path):
     code = SLOW_SWEEP.format(net=str(RC), out=str(tmp_path / "t.csv"))
-    proc = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.DEVNULL,
+    proc = subprocess.Popen([sys.executable, "-c", code], env=SLOW_ENV,
+                            stdout=subprocess.DEVNULL,
                             stderr=subprocess.DEVNULL)
     workers: list[int] = []
     deadline = time.monotonic() + 60
@@ -159,7 +162,8 @@ def test_workers_die_with_a_killed_parent(tmp_path):
 
 def test_ctrl_c_ends_a_sweep_quickly_without_worker_tracebacks(tmp_path):
     code = SLOW_SWEEP.format(net=str(RC), out=str(tmp_path / "t.csv"))
-    proc = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.DEVNULL,
+    proc = subprocess.Popen([sys.executable, "-c", code], env=SLOW_ENV,
+                            stdout=subprocess.DEVNULL,
                             stderr=subprocess.PIPE, text=True, start_new_session=True)
     deadline = time.monotonic() + 60
     while len(_children(proc.pid)) < 2 and time.monotonic() < deadline:

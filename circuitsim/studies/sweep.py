@@ -458,25 +458,19 @@ def _execute(todo: list[Run], models: Mapping[str, Any], metrics: Metrics,
              executor: Executor | None, jobs: int, finished: Callable[[dict], None]) -> None:
     """Run ``todo`` on ``executor`` (default: an own process pool), sending a run again when
     its worker died; a pool broken by a dead worker is replaced."""
-    from concurrent.futures.process import BrokenProcessPool
-
     own = executor is None
     pool = _new_pool(jobs) if own else executor
     tries = {r.key(): 0 for r in todo}
-    pending = list(todo)
+    pending, isolate = list(todo), False
     try:
         while pending:
-            futures = {pool.submit(_worker, models[r.netlist], r, metrics): r  # type: ignore
-                       for r in pending}
+            # once a worker has died, one run at a time: a death then fails its own run
+            # only, never the runs that happened to share the broken pool with it
+            batches = [[r] for r in pending] if isolate else [pending]
             pending = []
-            broken = False
-            for fut in as_completed(futures):
-                r = futures[fut]
-                try:
-                    finished(fut.result())
-                    continue
-                except Exception as exc:  # noqa: BLE001 - a worker crash is a retry, then a row
-                    broken = broken or isinstance(exc, BrokenProcessPool)
+            for batch in batches:
+                failed, broken = _submit(pool, batch, models, metrics, finished)
+                for r, exc in failed:
                     tries[r.key()] += 1
                     if tries[r.key()] <= RETRIES:
                         pending.append(r)
@@ -484,9 +478,26 @@ def _execute(todo: list[Run], models: Mapping[str, Any], metrics: Metrics,
                     finished({"netlist": r.netlist, **r.params, "status": "crashed",
                               "message": f"{type(exc).__name__}: {exc} (after {RETRIES} "
                                          f"retries)"})
-            if broken and own and pending:
-                _stop_pool(pool)  # type: ignore[arg-type]
-                pool = _new_pool(jobs)
+                if broken and own:
+                    _stop_pool(pool)  # type: ignore[arg-type]
+                    pool, isolate = _new_pool(jobs), True
     finally:
         if own:
             _stop_pool(pool)  # type: ignore[arg-type]
+
+
+def _submit(pool, runs: list[Run], models: Mapping[str, Any], metrics: Metrics,
+            finished: Callable[[dict], None]) -> tuple[list[tuple[Run, Exception]], bool]:
+    """Run ``runs`` on ``pool``; the ones that failed (with why), and whether a dead worker
+    broke the pool."""
+    from concurrent.futures.process import BrokenProcessPool
+
+    futures = {pool.submit(_worker, models[r.netlist], r, metrics): r for r in runs}
+    failed, broken = [], False
+    for fut in as_completed(futures):
+        try:
+            finished(fut.result())
+        except Exception as exc:  # noqa: BLE001 - a worker crash is a retry, then a row
+            broken = broken or isinstance(exc, BrokenProcessPool)
+            failed.append((futures[fut], exc))
+    return failed, broken
