@@ -34,17 +34,11 @@ import numpy as np
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "tests"))
+sys.path.insert(0, str(ROOT / "benchmarks"))
 NETLIST = ROOT / "netlists" / "kim2024" / "base.yaml"
 KW = {"rtol": 2e-6, "atol": 1e-8}
 
-
-def _best(fn, n: int) -> tuple[float, object]:
-    best, out = float("inf"), None
-    for _ in range(n):
-        t0 = time.perf_counter()
-        out = fn()
-        best = min(best, time.perf_counter() - t0)
-    return best, out
+from common import best_of  # after the path it is found on
 
 
 def child() -> dict:
@@ -60,9 +54,9 @@ def child() -> dict:
     t0 = time.perf_counter()
     kernels = model.simulate(**KW)
     first = time.perf_counter() - t0
-    t_direct, _ = _best(lambda: model.simulate(**KW), 7)
+    t_direct, _ = best_of(7, lambda: model.simulate(**KW))
     os.environ.pop("CIRCUITSIM_KERNELS")
-    t_python, _ = _best(lambda: model.simulate(**KW), 7)
+    t_python, _ = best_of(7, lambda: model.simulate(**KW))
     same = all(np.array_equal(a, b) for a, b in ((python.t, kernels.t), (python.y, kernels.y),
                                                  (python.yp, kernels.yp)))
     return {"first_direct": first, "direct": t_direct, "python": t_python, "same": same,
