@@ -109,6 +109,21 @@ def test_sensor_delay_patch_reads_the_probe_late():
     np.testing.assert_allclose(null, base, atol=1e-6 * np.max(np.abs(base)))
 
 
+def test_no_effect_is_proposed_on_a_patch_s_own_parts():
+    """A sensor's filter or a series source added by a patch is not part of the circuit to
+    diagnose: no series resistance, drift or saturation is proposed on it."""
+    net = cs.load(NETLISTS / "kim2024" / "base.yaml")
+    probes = {"speed": "rad/s", "i_total": "A"}
+    before = {c.key for c in effects.candidates(net, None, probes)}
+    delay = next(c for c in effects.candidates(net, None, probes) if c.effect == "sensor-delay")
+    series = next(c for c in effects.candidates(net, None, probes)
+                  if c.effect == "series-resistance")
+    patched = build(series.apply(delay.apply(net.raw)))
+    after = {c.key for c in effects.candidates(patched, None, probes)}
+    assert after - before == set()  # nothing new on the added parts
+    assert {delay.key, series.key} <= after  # the catalog itself is unchanged
+
+
 def test_stribeck_patch_is_coulomb_friction_far_above_its_speed():
     """At 650 rad/s the breakaway peak (below ~1 rad/s) has decayed: the steady speed is the
     Coulomb closed form with tau_c = c, whatever the peak s."""

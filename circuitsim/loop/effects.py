@@ -73,16 +73,24 @@ def _insert_series(raw: RawNetlist, target: str, name: str, expr: str) -> None:
     loc = SourceLoc(raw.path or "<patch>")
     raw.comps.append(({"name": name, "type": "BV", "p": mid, "n": node, "expr": expr}, loc,
                       raw.path))
+    raw.patch_parts.add(name)
 
 
 def _add(raw: RawNetlist, entry: dict) -> None:
     raw.comps.append((entry, SourceLoc(raw.path or "<patch>"), raw.path))
+    raw.patch_parts.add(str(entry["name"]))
+
+
+def _declared(net: Netlist) -> list:
+    """The netlist's components, without those a patch added."""
+    added = net.raw.patch_parts if net.raw is not None else set()
+    return [c for c in net.components if c.name not in added]
 
 
 def _electrical_two_pins(net: Netlist, kinds: set[str] | None = None,
                          exclude: set[str] = frozenset()) -> list[str]:
     out = []
-    for c in net.components:
+    for c in _declared(net):
         ports = {p.name: p.domain.name for p in c.cls.ports}
         if ports.get("p") != "electrical" or ports.get("n") != "electrical":
             continue
@@ -98,7 +106,7 @@ def _electrical_two_pins(net: Netlist, kinds: set[str] | None = None,
 def _converters(net: Netlist) -> list[tuple[str, str]]:
     """(component, shaft node) of electromechanical converters (pins p, n and a shaft)."""
     out = []
-    for c in net.components:
+    for c in _declared(net):
         ports = {p.name: p.domain.name for p in c.cls.ports}
         if ports.get("p") == "electrical" and "rotational" in ports.values():
             shaft = next(n for (pn, n) in c.ports if ports[pn] == "rotational")
@@ -229,7 +237,7 @@ def _mechanical(net: Netlist, orders: Mapping[str, list[int]]) -> list[Candidate
 
 def _component_laws(net: Netlist) -> list[Candidate]:
     out: list[Candidate] = []
-    for c in net.components:
+    for c in _declared(net):
         if c.type in ("L", "inductor"):
             p = _pname("inductor-saturation", c.name, "Ipar")
             q = _pname("inductor-saturation", c.name, "ratio")

@@ -360,6 +360,9 @@ class RawNetlist:
     files: list[str] = field(default_factory=list)  # the netlist and its includes
     root: str | None = None  # the folder tree includes and tables must lie in (None: any)
     subckts: dict[str, Any] = field(default_factory=dict)  # subckt.Subckt by name
+    # components a diagnosis patch added (a friction, a sensor's filter): the catalog does
+    # not propose effects on them
+    patch_parts: set[str] = field(default_factory=set)
 
     def copy(self) -> RawNetlist:
         import copy
