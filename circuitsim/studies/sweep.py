@@ -481,9 +481,30 @@ def _execute(todo: list[Run], models: Mapping[str, Any], metrics: Metrics,
                 if broken and own:
                     _stop_pool(pool)  # type: ignore[arg-type]
                     pool, isolate = _new_pool(jobs), True
+    except KeyboardInterrupt:
+        if own:
+            _exit_within(INTERRUPT_GRACE, 130)
+        raise
     finally:
         if own:
             _stop_pool(pool)  # type: ignore[arg-type]
+
+
+#: [s] how long an interrupted sweep may take to stop its pool and leave.
+INTERRUPT_GRACE = 5.0
+
+
+def _exit_within(seconds: float, code: int) -> None:
+    """End the process after ``seconds`` whatever it is doing then. An interrupted pool can
+    hang the exit: the interpreter joins the pool's manager thread at exit, and that thread
+    may wait for ever on a worker the interrupt killed (seen once in about twenty Ctrl-Cs on a
+    loaded machine). Every row already written is whole (each is written and flushed at
+    once), so leaving then loses nothing the table holds."""
+    import threading
+
+    timer = threading.Timer(seconds, os._exit, args=(code,))
+    timer.daemon = True
+    timer.start()
 
 
 def _submit(pool, runs: list[Run], models: Mapping[str, Any], metrics: Metrics,
