@@ -221,3 +221,14 @@ def test_a_dask_worker_killed_mid_run_loses_no_run(tmp_path):
     # another process may differ in the last bit (its own BLAS and import order)
     assert [r["v_out.mean"] for r in rows] == pytest.approx([r["v_out.mean"] for r in serial],
                                                             rel=1e-12)
+
+
+def test_an_interrupted_sweep_leaves_even_when_its_exit_would_hang():
+    """The grace timer ends a process whose exit waits for ever (here a thread that never
+    finishes, as a pool's manager thread waiting on a killed worker can), with code 130."""
+    code = ("import threading; from circuitsim.studies.sweep import _exit_within; "
+            "threading.Thread(target=threading.Event().wait).start(); _exit_within(0.5, 130)")
+    start = time.monotonic()
+    proc = subprocess.run([sys.executable, "-c", code], check=False, timeout=30)
+    assert proc.returncode == 130
+    assert time.monotonic() - start < 10
