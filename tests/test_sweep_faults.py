@@ -138,6 +138,9 @@ SLOW_SWEEP = ("import sys; from circuitsim.cli.main import main; sys.exit(main([
               "'--no-energy', '--quiet', '--out', {out!r}]))")
 # the Python route: compiled kernels would finish the sweep before the signal arrives
 SLOW_ENV = {**os.environ, "CIRCUITSIM_KERNELS": "python"}
+# Ctrl-C acts as on a terminal even when the test runner was started in the background (a
+# shell's `&` makes its jobs ignore SIGINT, and Python then leaves it ignored)
+INTERRUPTIBLE = "import signal; signal.signal(signal.SIGINT, signal.default_int_handler); "
 
 
 @pytest.mark.skipif(not Path("/proc/self/task").exists(), reason="needs Linux /proc")
@@ -161,7 +164,7 @@ def test_workers_die_with_a_killed_parent(tmp_path):
 
 
 def test_ctrl_c_ends_a_sweep_quickly_without_worker_tracebacks(tmp_path):
-    code = SLOW_SWEEP.format(net=str(RC), out=str(tmp_path / "t.csv"))
+    code = INTERRUPTIBLE + SLOW_SWEEP.format(net=str(RC), out=str(tmp_path / "t.csv"))
     proc = subprocess.Popen([sys.executable, "-c", code], env=SLOW_ENV,
                             stdout=subprocess.DEVNULL,
                             stderr=subprocess.PIPE, text=True, start_new_session=True)
