@@ -21,7 +21,7 @@ from pathlib import Path
 
 from circuitsim.errors import CircuitsimError, ParameterError, SolverError
 from circuitsim.files import atomic_write, check_output
-from circuitsim.report.plots import _bode, plot
+from circuitsim.report.plots import _bode, _lean_import, plot
 
 ALLOW_HELP = ("let the netlist include or read tables from files outside its own folder tree "
               "(refused by default: a netlist from someone else must not read your files)")
@@ -225,6 +225,7 @@ def cmd_run(args) -> int:
     res = _simulate(model, args, overrides)
     if res.t.size and files:
         write_run_csv(res, files["csv"], names, args.after, args.decimate, args.header_units)
+        _lean_import()  # a process that ends here needs no artist docstrings
         plot(res, files["plot"], names=names, window=args.window)
     else:
         files = {}
