@@ -16,9 +16,18 @@ of the same topology does no symbolic work.
 
 from __future__ import annotations
 
+import ast
+import re
 from typing import Any
 
-CODEGEN_VERSION = "13"
+CODEGEN_VERSION = "17"
+
+# [unknowns] from here on the residual's linear part is a sparse matrix product (measured on
+# RLC ladders: 5x slower than the scalar code at 16 unknowns, 2x at 50, equal at 100) ...
+MATRIX_RESIDUAL_FROM = 100
+# ... and IDA factorises with SuperLU_MT instead of a dense LU (its ~10 ms per factorisation
+# loses to the dense O(n^3) LU up to a few hundred unknowns: measured crossover 250-500)
+SPARSE_FROM = 400
 
 
 def _printers():
@@ -228,7 +237,7 @@ def _linear_functions(F: list, Y: list, YP: list, n: int, n_par: int, scalar):
                  n, n_par, scalar, fail="res[:] = math.nan", add=True)
     meta = {"ly_pattern": [[i for i, _ in ly], [j for _, j in ly]],
             "lyp_pattern": [[i for i, _ in lyp], [j for _, j in lyp]]}
-    return src, meta
+    return src, meta, (rest_rows, rest_exprs)
 
 
 def _pattern(fy: dict, fyp: dict) -> list[tuple[int, int]]:
@@ -345,6 +354,7 @@ import math
 import numpy
 from llvmlite import ir
 from numba import carray, cfunc, njit, types
+from numba.core import cgutils
 from numba.extending import intrinsic
 
 
@@ -386,6 +396,23 @@ def band_smu(typingctx, x):
     return types.int32(types.voidptr), _band_field(20, ir.IntType(32))
 
 
+@intrinsic
+def sparse_data(typingctx, x):
+    # a sparse SUNMatrix's content: int32 M, N, NNZ, NP, then the data pointer, int
+    # sparsetype, the row indices and the column pointers (checked in solve/direct.py)
+    return types.voidptr(types.voidptr), _band_field(16, ir.IntType(8).as_pointer())
+
+
+@intrinsic
+def sparse_rows(typingctx, x):
+    return types.voidptr(types.voidptr), _band_field(32, ir.IntType(8).as_pointer())
+
+
+@intrinsic
+def sparse_ptrs(typingctx, x):
+    return types.voidptr(types.voidptr), _band_field(40, ir.IntType(8).as_pointer())
+
+
 def _int_to_pointer(context, builder, signature, args):
     return builder.inttoptr(args[0], ir.IntType(8).as_pointer())
 
@@ -393,6 +420,22 @@ def _int_to_pointer(context, builder, signature, args):
 @intrinsic
 def as_pointer(typingctx, address):
     return types.voidptr(address), _int_to_pointer
+
+
+def _call_pow(context, builder, signature, args):
+    # C's pow, called as a library function that LLVM may not rewrite (it turns pow(x, 2.0)
+    # into x*x and pow(x, -1.0) into 1/x, which round differently from glibc's pow)
+    double = ir.DoubleType()
+    fn = cgutils.get_or_insert_function(builder.module, ir.FunctionType(double, [double, double]),
+                                        "pow")
+    fn.attributes.add("nobuiltin")
+    return builder.call(fn, args)
+
+
+@intrinsic
+def libm_pow(typingctx, x, y):
+    """x ** y as Python computes it for floats: C's pow."""
+    return types.float64(types.float64, types.float64), _call_pow
 
 
 IDA_SOLVE = types.ExternalFunction("IDASolve", types.int32(
@@ -454,10 +497,128 @@ def _kernels(F: list, jac_exprs: list, pattern: list, n: int, n_par: int, scalar
     return None if ("T[" in text or "TD[" in text) else text
 
 
+class _PowCalls(ast.NodeTransformer):
+    """``a ** b`` as ``libm_pow(a, b)`` with float operands (see ``_libm_powers``)."""
+
+    def visit_BinOp(self, node: ast.BinOp) -> ast.AST:
+        self.generic_visit(node)
+        if not isinstance(node.op, ast.Pow):
+            return node
+        return ast.Call(ast.Name("libm_pow", ast.Load()),
+                        [_as_float(node.left), _as_float(node.right)], [])
+
+
+def _as_float(node: ast.AST) -> ast.AST:
+    """A number written in the source (3, -3) as a float literal; anything else as it is."""
+    sign = 1.0
+    if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub):
+        sign, inner = -1.0, node.operand
+    else:
+        inner = node
+    if isinstance(inner, ast.Constant) and isinstance(inner.value, int | float):
+        return ast.Constant(sign * float(inner.value))
+    return node
+
+
+def _libm_powers(line: str) -> str:
+    """A kernel line with every power through C's ``pow``: Python's float ``**`` calls it,
+    numba would multiply repeatedly for an integer exponent and LLVM would rewrite
+    ``pow(x, 2.0)`` and ``pow(x, -1.0)``, each rounding otherwise; so the kernels give the
+    Python route's numbers to the bit."""
+    if "**" not in line:
+        return line
+    indent = line[:len(line) - len(line.lstrip())]
+    tree = ast.fix_missing_locations(_PowCalls().visit(ast.parse(line.strip())))
+    return indent + ast.unparse(tree)
+
+
+def _large_kernels(rest: tuple[list[int], list], sizes: tuple[int, int], jac_exprs: list,
+                   pattern: list, n: int, n_par: int, scalar) -> str | None:
+    """Kernels of a model of ``MATRIX_RESIDUAL_FROM`` unknowns or more, with the Python
+    route's arithmetic: the residual as Ly y + Lyp y' (scipy's CSR product, row by row in
+    the same order) plus the remaining terms, the Jacobian entry by entry into the matrix the
+    model's linear solver takes (dense below ``SPARSE_FROM`` unknowns, else SuperLU_MT's
+    compressed columns, whose indices IDA zeroes before every call). The user data: the
+    parameters (at least one entry), then Ly's and Lyp's CSR arrays (index pointers, column
+    indices, values) as float64, built from ``linear(p)`` in solve/direct.py."""
+    n_p, (ny, nyp) = max(n_par, 1), sizes
+    a_y, a_yp = n_p, n_p + n + 1 + 2 * ny  # where Ly's and Lyp's arrays start in ud
+    size = a_yp + n + 1 + 2 * nyp
+    vec = "carray(data_of({}), {}, dtype=numpy.float64)"
+    pre = [f"    y = {vec.format('yy', n)}", f"    d = {vec.format('ypv', n)}",
+           f"    p = carray(ud, {n_p}, dtype=numpy.float64)"]
+    matvec = [f"    u = carray(ud, {size}, dtype=numpy.float64)", f"    for i in range({n}):"]
+    for acc, at, nnz, x in (("s", a_y, ny, "y"), ("s2", a_yp, nyp, "d")):
+        matvec += [f"        {acc} = 0.0",
+                   f"        for k in range(int(u[{at} + i]), int(u[{at + 1} + i])):",
+                   f"            {acc} += u[{at + n + 1 + nnz} + k] * {x}[int(u[{at + n + 1} + k])]"]
+    matvec += ["        r[i] = s + s2"]
+    src = [_KERNEL_HEADER.rstrip(), "", "", f"LINEAR = ({n_p}, {ny}, {nyp})"]
+    rows, exprs = rest
+    src += _chunked("residual", "RES", "t, yy, ypv, rr, ud", exprs, [f"r[{i}]" for i in rows],
+                    [*pre, f"    r = {vec.format('rr', n)}", *matvec], "0.0, y, d, p, r",
+                    n, n_par, scalar, op="+=")
+    args = "t, cj, yy, ypv, rr, J, ud, t1, t2, t3"
+    if n < SPARSE_FROM:
+        src += _chunked("jacobian", "JAC", args, jac_exprs,
+                        [f"a[{i + j * n}]" for i, j in pattern],
+                        [*pre, f"    a = {vec.format('J', n * n)}"], "cj, y, d, p, a", n, n_par,
+                        scalar)
+    else:
+        ptrs = [0] * (n + 1)  # column pointers of the compressed-column pattern
+        for _, j in pattern:
+            ptrs[j + 1] += 1
+        for j in range(n):
+            ptrs[j + 1] += ptrs[j]
+        src += ["", "", f"JAC_ROWS = numpy.array({[i for i, _ in pattern]}, dtype=numpy.int32)",
+                f"JAC_PTRS = numpy.array({ptrs}, dtype=numpy.int32)"]
+        nnz = len(pattern)
+        src += _chunked("jacobian_sparse", "JAC", args, jac_exprs,
+                        [f"a[{k}]" for k in range(nnz)],
+                        [*pre, f"    a = carray(sparse_data(J), {nnz}, dtype=numpy.float64)",
+                         f"    carray(sparse_rows(J), {nnz}, dtype=numpy.int32)[:] = JAC_ROWS",
+                         f"    carray(sparse_ptrs(J), {n + 1}, dtype=numpy.int32)[:] = JAC_PTRS"],
+                        "cj, y, d, p, a", n, n_par, scalar)
+    text = "\n".join(src) + "\n"
+    return None if ("T[" in text or "TD[" in text) else text
+
+
+CHUNK = 64  # statements per compiled part of a large kernel
+_CSE_NAME = re.compile(r"\bc(\d+)\b")
+
+
+def _chunked(name: str, sig: str, args: str, exprs: list, targets: list[str], pre: list[str],
+             call: str, n: int, n_par: int, scalar, op: str = "=") -> list[str]:
+    """A large kernel as a cfunc calling parts of ``CHUNK`` statements each: numba's compile
+    time grows as the cube of a function's length (12 s for 500 statements, 81 s for 1000)
+    and linearly over parts (11 ms a statement). The common subexpressions travel between
+    the parts in an array ``cs``; ``call``: what the parts take after ``t`` (``cj``, the
+    states, derivatives, parameters and the array the targets name)."""
+    lines = [_libm_powers(line) for line in _block(exprs, scalar, "    ", targets, op)]
+    n_cse = sum(1 for line in lines if re.match(r"    c\d+ = ", line))
+    lines = [_CSE_NAME.sub(r"cs[\1]", line) for line in lines]
+    source = {"yp": "d", "y": "y", "p": "p"}
+    out: list[str] = []
+    calls = []
+    for start in range(0, len(lines), CHUNK):
+        part = lines[start:start + CHUNK]
+        used = sorted(set(re.findall(r"\b(yp|y|p)(\d+)\b", "\n".join(part))))
+        part_name = f"_{name}_{start // CHUNK}"
+        out += ["", "", '@njit(cache=True, error_model="numpy")',
+                f"def {part_name}(t, {call.replace('0.0', 'cj')}, cs):",
+                *[f"    {kind}{k} = {source[kind]}[{k}]" for kind, k in used], *part,
+                "    return 0"]
+        calls.append(f"    {part_name}(t, {call}, cs)")
+    return [*out, "", "", f'@cfunc({sig}, cache=True, error_model="numpy")',
+            f"def {name}({args}):", *pre, f"    cs = numpy.empty({max(n_cse, 1)})", *calls,
+            "    return 0"]
+
+
 def _kernel(name: str, sig: str, args: str, exprs: list, targets: list[str], pre: list[str],
-            n: int, n_par: int, scalar, batch: bool = False) -> list[str]:
-    """One cfunc: the arrays, the names the expressions use, the assignments; for a batch,
-    the same body once per member (offset o into the states, q into the parameters)."""
+            n: int, n_par: int, scalar, batch: bool = False, op: str = "=") -> list[str]:
+    """One cfunc: the arrays, the names the expressions use, the assignments (``op``: set or
+    add to the targets); for a batch, the same body once per member (offset o into the
+    states, q into the parameters)."""
     from circuitsim.component import as_expr
 
     used = {str(q) for e in exprs for q in as_expr(e).free_symbols}
@@ -466,7 +627,7 @@ def _kernel(name: str, sig: str, args: str, exprs: list, targets: list[str], pre
     body = [f"{ind}y{k} = y[{o}{k}]" for k in range(n) if f"y{k}" in used]
     body += [f"{ind}yp{k} = d[{o}{k}]" for k in range(n) if f"yp{k}" in used]
     body += [f"{ind}p{k} = p[{q}{k}]" for k in range(n_par) if f"p{k}" in used]
-    body += _block(exprs, scalar, ind, targets)
+    body += [_libm_powers(line) for line in _block(exprs, scalar, ind, targets, op)]
     if batch:
         body = ["    for k in range(K):", f"        o, q = k * {n}, 1 + k * {n_par}", *body]
     return ["", "", f'@cfunc({sig}, cache=True, error_model="numpy")',
@@ -513,7 +674,7 @@ def generate(dae) -> tuple[str, dict[str, Any]]:
                  [f"out[{k}]" for k in range(2 * n_init)], n, n_par, scalar,
                  pre=[f"        out = [0.0] * {2 * n_init}"], post=["        return out"],
                  fail=f"out = [math.nan] * {2 * n_init}")
-    lin_src, lin_meta = _linear_functions(F, [ren[s] for s in dae.states],
+    lin_src, lin_meta, rest = _linear_functions(F, [ren[s] for s in dae.states],
                                           [ren[s] for s in dae.yp], n, n_par, scalar)
     src += lin_src
     src += ["    return residual, jac, parts, observe, initial, linear, rest", ""]
@@ -529,9 +690,13 @@ def generate(dae) -> tuple[str, dict[str, Any]]:
                                                           [j for _, j in pattern]],
                  "fy_pattern": [[i for i, _ in fy], [j for _, j in fy]],
                  "fyp_pattern": [[i for i, _ in fyp], [j for _, j in fyp]], **lin_meta})
-    # the kernels repeat the scalar residual's arithmetic, which larger models replace by a
-    # sparse product of their linear part (model.MATRIX_RESIDUAL_FROM): no kernels there
-    meta["kernels"] = _kernels(F, jac_exprs, pattern, n, n_par, scalar) if n < 100 else None
+    # the kernels repeat the Python route's arithmetic: the scalar residual of a small model,
+    # the sparse product of its linear part plus the rest for a large one
+    if n < MATRIX_RESIDUAL_FROM:
+        meta["kernels"] = _kernels(F, jac_exprs, pattern, n, n_par, scalar)
+    else:
+        sizes = (len(lin_meta["ly_pattern"][0]), len(lin_meta["lyp_pattern"][0]))
+        meta["kernels"] = _large_kernels(rest, sizes, jac_exprs, pattern, n, n_par, scalar)
     return "\n".join(src), meta
 
 

@@ -27,12 +27,10 @@ def _near(name: str, options) -> str:
     return f" (did you mean {', '.join(close)}?)" if close else ""
 
 
-# [unknowns] from here on the residual's linear part is a sparse matrix product (measured on
-# RLC ladders: 5x slower than the scalar code at 16 unknowns, 2x at 50, equal at 100) ...
-MATRIX_RESIDUAL_FROM = 100
-# ... and IDA factorises with SuperLU_MT instead of a dense LU (its ~10 ms per factorisation
-# loses to the dense O(n^3) LU up to a few hundred unknowns: measured crossover 250-500)
-SPARSE_FROM = 400
+# [unknowns] the sizes from which the residual's linear part is a sparse product and IDA
+# factorises with SuperLU_MT (codegen writes the compiled kernels to match)
+MATRIX_RESIDUAL_FROM = codegen.MATRIX_RESIDUAL_FROM
+SPARSE_FROM = codegen.SPARSE_FROM
 
 
 def _bind(raw, meta: dict, linsolver: str) -> tuple:
@@ -87,6 +85,7 @@ def _split_residual(linear, rest, meta: dict, n: int):
         res[:] = Ly @ y + Lyp @ yp
         rest(t, y, yp, res, p)
 
+    residual.matrices = matrices  # the compiled kernels take the same (solve/direct.py)
     return residual
 
 
@@ -185,7 +184,10 @@ class CompiledModel:
         n = len(self.state_names)
         pattern = sps.csc_matrix((np.ones(len(rows)), (rows, cols)), shape=(n, n))
         pattern.sort_indices()
-        return {"linsolver": "sparse", "sparsity": pattern, "jacfn": jac}
+        opts = {"linsolver": "sparse", "sparsity": pattern, "jacfn": jac}
+        if kernels_requested():  # IDA may call compiled kernels (solve/direct.py)
+            opts["kernels_of"] = (self, None)
+        return opts
 
     @property
     def jac_flat(self):

@@ -10,8 +10,11 @@ the same options: the same steps and the same numbers, to the bit, many times fa
 (``benchmarks/bench_compiled_route.py``). Importing numba and loading the kernels costs about
 half a second per process, so it pays from a handful of solves in one process (sweeps,
 scripts, fits); it is off by default. Batches of K members stacked in one band system
-(``solve/batch.py``) run on stacked kernels. Models without kernels (run-time tables, 100
-unknowns or more), the sparse solver and event functions stay with scikit-sundae.
+(``solve/batch.py``) run on stacked kernels. A model of 100 unknowns or more has kernels with
+its Python route's arithmetic (the linear part as a CSR product, whose arrays travel in the
+user data) and IDA gets the same linear solver as there: the dense one, or from 400 unknowns
+SuperLU_MT on the Jacobian's compressed columns. Models without kernels (run-time tables),
+large batches and event functions stay with scikit-sundae.
 """
 
 from __future__ import annotations
@@ -58,7 +61,8 @@ def _libraries() -> dict[str, Any]:
     lib = {name: ctypes.CDLL(str(next(folder.glob(f"libsundials_{name}-*.so*"))),
                              mode=ctypes.RTLD_GLOBAL)
            for name in ("core", "nvecserial", "sunmatrixdense", "sunlinsoldense",
-                        "sunmatrixband", "sunlinsolband", "ida")}
+                        "sunmatrixband", "sunlinsolband", "sunmatrixsparse",
+                        "sunlinsolsuperlumt", "ida")}
     vp, dbl, i32, lng = ctypes.c_void_p, ctypes.c_double, ctypes.c_int, ctypes.c_long
     for name, res, args in _signatures(vp, dbl, i32, lng):
         owner, fn = name.split(".")
@@ -79,6 +83,11 @@ def _signatures(vp, dbl, i32, lng) -> list:
             ("sunlinsoldense.SUNLinSol_Dense", vp, [vp, vp, vp]),
             ("sunmatrixband.SUNBandMatrix", vp, [i32, i32, i32, vp]),
             ("sunlinsolband.SUNLinSol_Band", vp, [vp, vp, vp]),
+            ("sunmatrixsparse.SUNSparseMatrix", vp, [i32, i32, i32, i32, vp]),
+            ("sunmatrixsparse.SUNSparseMatrix_Data", vp, [vp]),
+            ("sunmatrixsparse.SUNSparseMatrix_IndexValues", vp, [vp]),
+            ("sunmatrixsparse.SUNSparseMatrix_IndexPointers", vp, [vp]),
+            ("sunlinsolsuperlumt.SUNLinSol_SuperLUMT", vp, [vp, vp, i32, vp]),
             ("ida.IDACreate", vp, [vp]), ("ida.IDAInit", i32, [vp, vp, dbl, vp, vp]),
             ("ida.IDAFree", None, [ptr(vp)]), ("ida.IDASStolerances", i32, [vp, dbl, dbl]),
             ("ida.IDASetLinearSolver", i32, [vp, vp, vp]), ("ida.IDASetJacFn", i32, [vp, vp]),
@@ -102,7 +111,7 @@ def kernels(model) -> Any | None:
     from circuitsim.memo import open_cache_dir
 
     source = model.meta.get("kernels")
-    if not source or model.linsolver != "dense" or "residual_batch" not in source:
+    if not source:
         return None
     if model.key in _LOADED:
         return _LOADED[model.key]
@@ -127,10 +136,14 @@ class DirectIDA:
     """IDA with the kernels of one model: the part of scikit-sundae's ``IDA`` that
     ``integrate`` uses (``solve`` over a time span), with the same options."""
 
-    def __init__(self, module, opts: dict, members: list | None = None):
+    def __init__(self, module, opts: dict, members: list | None = None,
+                 data: np.ndarray | None = None, kind: str = "dense"):
         self.module, self.opts = module, opts
         # one model, or K members stacked (solve/batch.py: band solver, K parameter vectors)
         self.members = members
+        # a large model's user data (parameters, then its linear part's CSR arrays) and the
+        # linear solver: 'dense', 'band' (a batch) or 'sparse' (SuperLU_MT)
+        self.data, self.kind = data, kind
 
     def solve(self, tspan, y0, yp0) -> Result:
         """Outputs at ``tspan[1:]`` (a two-point span: the end only), stopping at its end."""
@@ -158,12 +171,7 @@ class DirectIDA:
         mem = h["mem"] = ctypes.c_void_p(ida.IDACreate(ctx))
         ida.IDASetUserData(mem, h["p"].ctypes.data)
         ida.IDAInit(mem, residual.address, float(t0), h["yy"], h["yp"])
-        if self.members is None:
-            h["A"] = lib["sunmatrixdense"].SUNDenseMatrix(n, n, ctx)
-            h["LS"] = lib["sunlinsoldense"].SUNLinSol_Dense(h["yy"], h["A"], ctx)
-        else:
-            h["A"] = lib["sunmatrixband"].SUNBandMatrix(n, o["uband"], o["lband"], ctx)
-            h["LS"] = lib["sunlinsolband"].SUNLinSol_Band(h["yy"], h["A"], ctx)
+        h["A"], h["LS"] = self._matrix(lib, ctx, h["yy"], n)
         ida.IDASetLinearSolver(mem, h["LS"], h["A"])
         ida.IDASetJacFn(mem, jacobian.address)
         ida.IDASStolerances(mem, float(o["rtol"]), float(o["atol"]))
@@ -172,10 +180,27 @@ class DirectIDA:
         ida.IDASetMaxNumSteps(mem, int(o.get("max_num_steps", 500)))
         return h
 
+    def _matrix(self, lib, ctx, yy, n: int) -> tuple[Any, Any]:
+        """IDA's matrix and linear solver, as scikit-sundae makes them for these options."""
+        if self.kind == "dense":
+            a = lib["sunmatrixdense"].SUNDenseMatrix(n, n, ctx)
+            return a, lib["sunlinsoldense"].SUNLinSol_Dense(yy, a, ctx)
+        if self.kind == "band":
+            o = self.opts
+            a = lib["sunmatrixband"].SUNBandMatrix(n, o["uband"], o["lband"], ctx)
+            return a, lib["sunlinsolband"].SUNLinSol_Band(yy, a, ctx)
+        # compressed columns (CSC_MAT = 0); one thread, scikit-sundae's default
+        a = lib["sunmatrixsparse"].SUNSparseMatrix(n, n, self.module.JAC_ROWS.size, 0, ctx)
+        return a, lib["sunlinsolsuperlumt"].SUNLinSol_SuperLUMT(yy, a, 1, ctx)
+
     def _kernels_and_data(self) -> tuple[np.ndarray, Any, Any]:
-        """The user data (the parameters; for a batch K, then each member's) and the two
-        kernels. At least one entry: the kernels read p[0] when a model has none."""
+        """The user data (the parameters; for a batch K, then each member's; for a large
+        model its CSR arrays after them) and the two kernels. At least one entry: the kernels
+        read p[0] when a model has none."""
         m = self.module
+        if self.data is not None:
+            jac = m.jacobian_sparse if self.kind == "sparse" else m.jacobian
+            return self.data, m.residual, jac
         if self.members is None:
             p = list(self.opts["userdata"])
             return np.array(p + [0.0] * (not p), dtype=float), m.residual, m.jacobian
@@ -213,15 +238,19 @@ class DirectIDA:
 
 def ida_for(opts: dict) -> DirectIDA | None:
     """A DirectIDA for ``opts["kernels_of"]`` = (model, None) or, for a stacked batch, (model,
-    members' parameter vectors) when kernels are wanted and the model has them, else None
-    (also, with one warning, when they cannot be built: the Python route then runs)."""
+    members' parameter vectors) when kernels are wanted, the model has them and they fill
+    the matrix of the linear solver the Python route would use, else None (also, with one
+    warning, when they cannot be built: the Python route then runs)."""
     model, members = opts["kernels_of"]
-    solver = "band" if members is not None else "dense"
-    if not wanted() or opts.get("linsolver") != solver or opts.get("eventsfn"):
+    if not wanted() or opts.get("eventsfn"):
         return None
     try:
         module = kernels(model)
         _libraries()  # found on Linux wheels; elsewhere this fails and the usual route runs
+        kind = _kind(module, model, members, opts.get("linsolver"))
+        data = None
+        if kind is not None and members is None and hasattr(module, "LINEAR"):
+            data = _large_data(module, model, opts["userdata"], kind)
     except Exception as exc:  # noqa: BLE001 - numba and the libraries fail in many ways
         import warnings
 
@@ -232,4 +261,59 @@ def ida_for(opts: dict) -> DirectIDA | None:
         warnings.warn(f"compiled kernels unavailable ({type(exc).__name__}: {why}); the "
                       f"Python residual is used", CircuitWarning, stacklevel=3)
         return None
-    return DirectIDA(module, opts, members) if module is not None else None
+    if module is None or kind is None:
+        return None
+    return DirectIDA(module, opts, members, data, kind)
+
+
+def _kind(module, model, members, linsolver: str | None) -> str | None:
+    """The linear solver whose matrix the kernels fill, when it is the one the Python route
+    takes (a size threshold changed after code generation: not)."""
+    if module is None:
+        return None
+    if members is not None:
+        return "band" if linsolver == "band" and hasattr(module, "residual_batch") else None
+    if not hasattr(module, "LINEAR"):
+        return "dense" if linsolver == "dense" else None
+    has = "sparse" if hasattr(module, "jacobian_sparse") else "dense"
+    return has if linsolver == has == model.linsolver else None
+
+
+def _large_data(module, model, p, kind: str) -> np.ndarray:
+    """The user data of a large model's kernels: the parameters, then Ly's and Lyp's CSR
+    arrays (index pointers, column indices, values) as float64, the very matrices the Python
+    residual multiplies by."""
+    matrices = getattr(model.fns[0], "matrices", None)
+    if matrices is None:
+        raise ValueError("the Python residual is not the sparse product the kernels repeat")
+    if kind == "sparse":
+        _check_sparse_layout()
+    n_p, ny, nyp = module.LINEAR
+    ly, lyp = matrices(p)
+    if (ly.nnz, lyp.nnz) != (ny, nyp):
+        raise ValueError("the linear part's pattern differs from the kernels'")
+    head = np.zeros(n_p)
+    head[:len(p)] = p
+    arrays = [head] + [a for m in (ly, lyp) for a in (m.indptr, m.indices, m.data)]
+    return np.concatenate([np.asarray(a, dtype=float) for a in arrays])
+
+
+def _check_sparse_layout() -> None:
+    """The kernels find a sparse matrix's data, row indices and column pointers at fixed
+    offsets in its content (SUNDIALS 7, 32-bit indices): check them against the library's
+    own accessors before IDA calls a kernel."""
+    lib = _libraries()
+    ctx = ctypes.c_void_p()
+    lib["core"].SUNContext_Create(0, ctypes.byref(ctx))
+    a = lib["sunmatrixsparse"].SUNSparseMatrix(3, 3, 4, 0, ctx)
+    try:
+        content = ctypes.c_void_p.from_address(a).value
+        got = [ctypes.c_void_p.from_address(content + k).value for k in (16, 32, 40)]
+        sm = lib["sunmatrixsparse"]
+        want = [sm.SUNSparseMatrix_Data(a), sm.SUNSparseMatrix_IndexValues(a),
+                sm.SUNSparseMatrix_IndexPointers(a)]
+    finally:
+        lib["core"].SUNMatDestroy(a)
+        lib["core"].SUNContext_Free(ctypes.byref(ctx))
+    if got != want:
+        raise RuntimeError("SUNDIALS' sparse matrix is not laid out as the kernels expect")
