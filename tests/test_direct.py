@@ -159,10 +159,10 @@ def test_a_large_model_runs_compiled_to_the_bit(compile_text, monkeypatch):
 def test_the_sparse_solver_runs_compiled_to_the_bit(compile_text, monkeypatch):
     """From SPARSE_FROM unknowns (here lowered to 100 before code generation) IDA factorises
     with SuperLU_MT on the Jacobian's compressed columns, which the kernel fills."""
+    from test_scale import rlc_ladder_with_a_nonlinear_load
+
     from circuitsim.compiler import codegen
     from circuitsim.compiler import model as model_module
-
-    from test_scale import rlc_ladder_with_a_nonlinear_load
 
     monkeypatch.setattr(codegen, "SPARSE_FROM", 100)
     monkeypatch.setattr(model_module, "SPARSE_FROM", 100)
