@@ -23,6 +23,15 @@ the last node and of the node a tenth of the way along (for motors, the last nod
 last rotor speed) are compared with ngspice's: the column ``|dv|`` is the largest absolute
 difference relative to the source voltage (speeds: relative to 648.5 rad/s).
 Growth exponents are least-squares slopes of log(cost) against log(N).
+
+With ``--compiled`` (numba installed: ``pip install ".[fast]"``) each size is also solved on the
+compiled route (``CIRCUITSIM_KERNELS=numba``, ``circuitsim/solve/direct.py``): the first such
+solve compiles the kernels (CPU seconds, column "kernels"), then both routes are timed in turns,
+minimum of three each in CPU seconds (both are single-threaded; the machine is shared), and the
+table gives the ratio compiled / Python and whether the two results are the same to the bit
+(times, states and derivatives)::
+
+    python benchmarks/scaling.py --compiled --family rc --sizes 300
 """
 
 from __future__ import annotations
@@ -153,7 +162,32 @@ def ngspice_vectors(fam: str, n: int) -> list[str]:
 
 
 # ---------------------------------------------------------------- one size, in a child
-def child(fam: str, n: int) -> dict:
+def compiled_route(model, python) -> dict:
+    """The compiled route against the Python one on the same model: kernel compile [s CPU],
+    the minimum of three solves each, taken in turns [s CPU], and whether they agree bit for
+    bit."""
+    t0 = time.process_time()
+    os.environ["CIRCUITSIM_KERNELS"] = "numba"
+    first = model.simulate()
+    kernels_s = time.process_time() - t0
+    from circuitsim.solve import direct
+
+    if direct._LOADED.get(model.key) is None:
+        return {"compiled": "not taken (see the warning on stderr)"}
+    best = {"python": float("inf"), "numba": float("inf")}
+    for _ in range(3):
+        for route in ("python", "numba"):
+            os.environ["CIRCUITSIM_KERNELS"] = route
+            t0 = time.process_time()
+            model.simulate()
+            best[route] = min(best[route], time.process_time() - t0)
+    same = all(np.array_equal(a, b) for a, b in ((python.t, first.t), (python.y, first.y),
+                                                 (python.yp, first.yp)))
+    return {"kernels_s": kernels_s, "solve_python_s": best["python"],
+            "solve_numba_s": best["numba"], "bitwise": same}
+
+
+def child(fam: str, n: int, compiled: bool = False) -> dict:
     """Compile cold and solve; runs in its own process with an empty cache."""
     import warnings
 
@@ -169,24 +203,26 @@ def child(fam: str, n: int) -> dict:
         t_compile = time.process_time() - t0
         import sksundae  # noqa: F401 - its import (0.5 s) is not the solve
         t_solve = float("inf")
+        os.environ["CIRCUITSIM_KERNELS"] = "python"
         for _ in range(2):  # best of two: the machine is shared
             t0 = time.perf_counter()
             res = model.simulate()
             t_solve = min(t_solve, time.perf_counter() - t0)
+        route = compiled_route(model, res) if compiled else {}
     second = "w_end" if fam == "motors" else "v_mid"
     finals = {"v_end": float(res["v_end"][-1]), second: float(res[second][-1])}
     rss = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024  # [MiB]
     return {"family": fam, "n": n, "unknowns": len(model.state_names),
             "nnz": model.meta.get("jac_nnz"), "compile_s": t_compile, "solve_s": t_solve,
             "rss_mib": rss, "ok": res.success, "finals": finals,
-            "linsolver": model.linsolver}
+            "linsolver": model.linsolver, **route}
 
 
-def measure(fam: str, n: int, timeout: float) -> dict:
+def measure(fam: str, n: int, timeout: float, compiled: bool = False) -> dict:
     env = dict(os.environ)
     with tempfile.TemporaryDirectory() as cache:
         env["CIRCUITSIM_CACHE"] = cache
-        cmd = [sys.executable, __file__, "--child", fam, str(n)]
+        cmd = [sys.executable, __file__, "--child", fam, str(n)] + ["--compiled"] * compiled
         try:
             proc = subprocess.run(cmd, capture_output=True, text=True, env=env,
                                   timeout=timeout, check=False)
@@ -215,16 +251,28 @@ def slope(rows: list[dict], key: str) -> float:
     return float(np.polyfit(x, y, 1)[0])
 
 
+def print_compiled(r: dict) -> None:
+    if "solve_numba_s" not in r:
+        print(f"         compiled route: {r.get('compiled', 'not measured')}")
+        return
+    py, nb = r["solve_python_s"], r["solve_numba_s"]
+    print(f"         compiled route: kernels {r['kernels_s']:.1f} s CPU (once, then cached); "
+          f"solve (CPU) Python {py:.3f} s, compiled {nb:.3f} s = {nb / py:.2f}x; "
+          f"{'the same to the bit' if r['bitwise'] else 'DIFFERENT numbers'}", flush=True)
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--family", choices=["rc", "rlc", "motors"], action="append")
     ap.add_argument("--sizes", type=int, nargs="+")
     ap.add_argument("--timeout", type=float, default=300.0)
     ap.add_argument("--json")
+    ap.add_argument("--compiled", action="store_true",
+                    help="also time the compiled route (numba) against the Python one")
     ap.add_argument("--child", nargs=2, help=argparse.SUPPRESS)
     a = ap.parse_args()
     if a.child:
-        print(json.dumps(child(a.child[0], int(a.child[1]))))
+        print(json.dumps(child(a.child[0], int(a.child[1]), a.compiled)))
         return
     rows: list[dict] = []
     for fam in a.family or ["rc", "rlc", "motors"]:
@@ -232,7 +280,7 @@ def main() -> None:
         print(f"\n{fam}: N  unknowns  jac-nnz  compile[s]  solve[s]  peakRSS[MiB]  "
               f"ngspice[s]  |dv|  linsolver")
         for n in a.sizes or DEFAULT_SIZES[fam]:
-            r = measure(fam, n, a.timeout)
+            r = measure(fam, n, a.timeout, a.compiled)
             fam_rows.append(r)
             if "error" in r:
                 print(f"  {n:5d}  {r['error']}")
@@ -240,6 +288,8 @@ def main() -> None:
             print(f"  {n:5d}  {r['unknowns']:7d}  {r['nnz']!s:>7}  {r['compile_s']:9.2f}  "
                   f"{r['solve_s']:8.3f}  {r['rss_mib']:8.0f}  {r.get('ngspice_s', 0):9.3f}  "
                   f"{r.get('dv', float('nan')):.1e}  {r['linsolver']}", flush=True)
+            if a.compiled:
+                print_compiled(r)
         print(f"  growth exponents: compile N^{slope(fam_rows, 'compile_s'):.2f}, solve "
               f"N^{slope(fam_rows, 'solve_s'):.2f}, nnz N^{slope(fam_rows, 'nnz'):.2f}, "
               f"ngspice N^{slope(fam_rows, 'ngspice_s'):.2f}")

@@ -532,7 +532,7 @@ def _libm_powers(line: str) -> str:
     return indent + ast.unparse(tree)
 
 
-def _large_kernels(rest: tuple[list[int], list], sizes: tuple[int, int], jac_exprs: list,
+def _large_kernels(rest: tuple[list[int], list], lin_meta: dict, jac_exprs: list,
                    pattern: list, n: int, n_par: int, scalar) -> str | None:
     """Kernels of a model of ``MATRIX_RESIDUAL_FROM`` unknowns or more, with the Python
     route's arithmetic: the residual as Ly y + Lyp y' (scipy's CSR product, row by row in
@@ -541,7 +541,8 @@ def _large_kernels(rest: tuple[list[int], list], sizes: tuple[int, int], jac_exp
     compressed columns, whose indices IDA zeroes before every call). The user data: the
     parameters (at least one entry), then Ly's and Lyp's CSR arrays (index pointers, column
     indices, values) as float64, built from ``linear(p)`` in solve/direct.py."""
-    n_p, (ny, nyp) = max(n_par, 1), sizes
+    n_p = max(n_par, 1)
+    ny, nyp = len(lin_meta["ly_pattern"][0]), len(lin_meta["lyp_pattern"][0])
     a_y, a_yp = n_p, n_p + n + 1 + 2 * ny  # where Ly's and Lyp's arrays start in ud
     size = a_yp + n + 1 + 2 * nyp
     vec = "carray(data_of({}), {}, dtype=numpy.float64)"
@@ -675,9 +676,8 @@ def generate(dae) -> tuple[str, dict[str, Any]]:
                  pre=[f"        out = [0.0] * {2 * n_init}"], post=["        return out"],
                  fail=f"out = [math.nan] * {2 * n_init}")
     lin_src, lin_meta, rest = _linear_functions(F, [ren[s] for s in dae.states],
-                                          [ren[s] for s in dae.yp], n, n_par, scalar)
-    src += lin_src
-    src += ["    return residual, jac, parts, observe, initial, linear, rest", ""]
+                                                [ren[s] for s in dae.yp], n, n_par, scalar)
+    src += [*lin_src, "    return residual, jac, parts, observe, initial, linear, rest", ""]
     # every probe and exported quantity as the source of one vectorised expression, compiled
     # only when asked for: a circuit of thousands of parts exports tens of thousands of
     # quantities, and evaluating them all at every output point would cost gigabytes
@@ -690,13 +690,9 @@ def generate(dae) -> tuple[str, dict[str, Any]]:
                                                           [j for _, j in pattern]],
                  "fy_pattern": [[i for i, _ in fy], [j for _, j in fy]],
                  "fyp_pattern": [[i for i, _ in fyp], [j for _, j in fyp]], **lin_meta})
-    # the kernels repeat the Python route's arithmetic: the scalar residual of a small model,
-    # the sparse product of its linear part plus the rest for a large one
-    if n < MATRIX_RESIDUAL_FROM:
-        meta["kernels"] = _kernels(F, jac_exprs, pattern, n, n_par, scalar)
-    else:
-        sizes = (len(lin_meta["ly_pattern"][0]), len(lin_meta["lyp_pattern"][0]))
-        meta["kernels"] = _large_kernels(rest, sizes, jac_exprs, pattern, n, n_par, scalar)
+    # the kernels repeat the Python route's arithmetic (the sparse product from 100 unknowns)
+    meta["kernels"] = (_kernels(F, jac_exprs, pattern, n, n_par, scalar) if n < MATRIX_RESIDUAL_FROM
+                       else _large_kernels(rest, lin_meta, jac_exprs, pattern, n, n_par, scalar))
     return "\n".join(src), meta
 
 
