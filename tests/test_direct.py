@@ -64,8 +64,9 @@ def test_periodic_steady_state_alike(monkeypatch):
     assert a == b
 
 
-def test_a_model_reading_a_table_keeps_the_python_route(compile_text, tmp_path, monkeypatch):
-    """A measured column is a Python callable at run time: no kernels, the usual route."""
+def test_a_model_reading_a_table_runs_compiled_to_the_bit(compile_text, tmp_path, monkeypatch):
+    """A measured column is interpolated inside the kernels, on its points passed in the user
+    data (held at the ends beyond them, as the Python route's table)."""
     (tmp_path / "in.csv").write_text("time,v\n0,0\n0.001,2\n0.003,2\n0.004,-1\n")
     model = compile_text("""
         components:
@@ -75,8 +76,10 @@ def test_a_model_reading_a_table_keeps_the_python_route(compile_text, tmp_path, 
         probes: {vout: out.v}
         analysis: {stop: 5 ms, step: 10 us}
     """)
-    assert model.meta["kernels"] is None
-    _same(*_both(model, monkeypatch))
+    assert "TABLES" in model.meta["kernels"]
+    python, kernels = _both(model, monkeypatch)
+    assert _ran_direct(model)
+    _same(python, kernels)
 
 
 def test_a_small_pwl_table_runs_compiled(compile_text, tmp_path, monkeypatch):

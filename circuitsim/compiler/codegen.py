@@ -20,7 +20,7 @@ import ast
 import re
 from typing import Any
 
-CODEGEN_VERSION = "17"
+CODEGEN_VERSION = "19"
 
 # [unknowns] from here on the residual's linear part is a sparse matrix product (measured on
 # RLC ladders: 5x slower than the scalar code at 16 unknowns, 2x at 50, equal at 100) ...
@@ -460,6 +460,27 @@ def outputs(mem, yy, yp, tspan, Y, YP, out_t, out_y, out_yp):
     return k, flag
 
 
+@njit(cache=True, error_model="numpy")
+def tab(u, h, i, x):
+    """Table i's value at x as circuitsim.compiler.model._Table computes it (held at the ends):
+    its points start at u[h + 2 i], u[h + 2 i + 1] of them: the x, the y, the slopes."""
+    off, m = int(u[h + 2 * i]), int(u[h + 2 * i + 1])
+    k = numpy.searchsorted(u[off:off + m], x, side="right") - 1
+    if k < 0:
+        return u[off + m]
+    if k >= m - 1:
+        return u[off + 2 * m - 1]
+    return u[off + m + k] + u[off + 2 * m + k] * (x - u[off + k])
+
+
+@njit(cache=True, error_model="numpy")
+def tab_slope(u, h, i, x):
+    """Table i's slope at x (0 outside its points), as _Table.slope."""
+    off, m = int(u[h + 2 * i]), int(u[h + 2 * i + 1])
+    k = numpy.searchsorted(u[off:off + m], x, side="right") - 1
+    return u[off + 2 * m + k] if 0 <= k < m - 1 else 0.0
+
+
 RES = types.int32(types.float64, types.voidptr, types.voidptr, types.voidptr, types.voidptr)
 JAC = types.int32(types.float64, types.float64, types.voidptr, types.voidptr, types.voidptr,
                   types.voidptr, types.voidptr, types.voidptr, types.voidptr, types.voidptr)
@@ -468,19 +489,30 @@ JAC = types.int32(types.float64, types.float64, types.voidptr, types.voidptr, ty
 
 def _kernels(F: list, jac_exprs: list, pattern: list, n: int, n_par: int, scalar
              ) -> str | None:
-    """Source of numba ``cfunc`` kernels for IDA to call directly, or None when the model reads
-    run-time tables (Python callables): the residual and the dense Jacobian (column-major) of
-    one member, and of K members stacked (``ud`` = K, then each member's parameters) with the
-    Jacobian in SUNDIALS' band storage, as ``solve/batch.py`` integrates them."""
+    """Source of numba ``cfunc`` kernels for IDA to call directly: the residual and the dense
+    Jacobian (column-major) of one member, and of K members stacked (``ud`` = K, then each
+    member's parameters) with the Jacobian in SUNDIALS' band storage, as ``solve/batch.py``
+    integrates them. A model reading run-time tables gets the first two only, the tables'
+    points in the user data after the parameters (``TABLES``; solve/direct.py)."""
     vec = "carray(data_of({}), {}, dtype=numpy.float64)"
+    h = max(n_par, 1) + 1  # the tables' header: ud[h - 1] = the user data's length, ...
     pre = [f"    y = {vec.format('yy', n)}", f"    d = {vec.format('ypv', n)}",
-           f"    p = carray(ud, {max(n_par, 1)}, dtype=numpy.float64)"]
+           f"    p = carray(ud, {h - 1}, dtype=numpy.float64)"]
+    single = _kernel("residual", "RES", "t, yy, ypv, rr, ud", F, [f"r[{i}]" for i in range(n)],
+                     [*pre, f"    r = {vec.format('rr', n)}"], n, n_par, scalar)
+    single += _kernel("jacobian", "JAC", "t, cj, yy, ypv, rr, J, ud, t1, t2, t3", jac_exprs,
+                      [f"a[{i + j * n}]" for i, j in pattern],
+                      [*pre, f"    a = {vec.format('J', n * n)}"], n, n_par, scalar)
     src = [_KERNEL_HEADER.rstrip()]
-    src += _kernel("residual", "RES", "t, yy, ypv, rr, ud", F, [f"r[{i}]" for i in range(n)],
-                   [*pre, f"    r = {vec.format('rr', n)}"], n, n_par, scalar)
-    src += _kernel("jacobian", "JAC", "t, cj, yy, ypv, rr, J, ud, t1, t2, t3", jac_exprs,
-                   [f"a[{i + j * n}]" for i, j in pattern],
-                   [*pre, f"    a = {vec.format('J', n * n)}"], n, n_par, scalar)
+    if any("T[" in line or "TD[" in line for line in single):
+        tables = (f"    u = carray(ud, int(carray(ud, {h}, dtype=numpy.float64)[{h - 1}]), "
+                  "dtype=numpy.float64)")
+        single = [_table_calls(line, h) for line in single]
+        at = [k + 1 for k, line in enumerate(single) if line.startswith("    p = carray(ud")]
+        for k in reversed(at):
+            single.insert(k, tables)
+        return "\n".join([*src, *single, "", "", "TABLES = True"]) + "\n"
+    src += single
     stacked = "carray(data_of({}), K * " + str(n) + ", dtype=numpy.float64)"
     pre_k = ["    K = int(carray(ud, 1, dtype=numpy.float64)[0])",
              f"    y = {stacked.format('yy')}", f"    d = {stacked.format('ypv')}",
@@ -493,8 +525,17 @@ def _kernels(F: list, jac_exprs: list, pattern: list, n: int, n_par: int, scalar
                    [*pre_k, "    ldim, smu = band_ldim(J), band_smu(J)",
                     f"    a = carray(band_data(J), ldim * K * {n}, dtype=numpy.float64)"],
                    n, n_par, scalar, batch=True)
-    text = "\n".join(src) + "\n"
-    return None if ("T[" in text or "TD[" in text) else text
+    return "\n".join(src) + "\n"
+
+
+_TABLE_CALL = re.compile(r"\b(TD?)\[(\d+)\]\(")
+
+
+def _table_calls(line: str, h: int) -> str:
+    """``T[i](x)`` and ``TD[i](x)`` (the Python route's table callables) as the kernels'
+    ``tab(u, h, i, x)`` and ``tab_slope(u, h, i, x)`` on the points in the user data."""
+    return _TABLE_CALL.sub(lambda m: f"{'tab' if m.group(1) == 'T' else 'tab_slope'}"
+                                     f"(u, {h}, {m.group(2)}, ", line)
 
 
 class _PowCalls(ast.NodeTransformer):

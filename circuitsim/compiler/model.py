@@ -156,6 +156,12 @@ class CompiledModel:
                                                      [t.slope for t in tables])
         return self._fns[:5]
 
+    def table_points(self) -> list[tuple[list[float], list[float], list[float]]]:
+        """Each run-time table's x, y and slopes, the numbers the Python route interpolates
+        with (the compiled kernels get the same: solve/direct.py)."""
+        tables = [_Table(t.x, t.y) for c in self.netlist.components for t in c.tables]
+        return [(tab.xl, tab.yl, tab.slopes) for tab in tables]
+
     @property
     def event_fns(self):
         """(guards, jumps) of the switching events (see codegen._events), or None."""

@@ -13,8 +13,10 @@ scripts, fits); it is off by default. Batches of K members stacked in one band s
 (``solve/batch.py``) run on stacked kernels. A model of 100 unknowns or more has kernels with
 its Python route's arithmetic (the linear part as a CSR product, whose arrays travel in the
 user data) and IDA gets the same linear solver as there: the dense one, or from 400 unknowns
-SuperLU_MT on the Jacobian's compressed columns. Models without kernels (run-time tables),
-large batches and event functions stay with scikit-sundae.
+SuperLU_MT on the Jacobian's compressed columns. A small model's run-time tables are
+interpolated in the kernels on their points, which travel in the user data too. Models without
+kernels (run-time tables at 100 unknowns or more), batches of models with tables, large
+batches and event functions stay with scikit-sundae.
 """
 
 from __future__ import annotations
@@ -251,6 +253,8 @@ def ida_for(opts: dict) -> DirectIDA | None:
         data = None
         if kind is not None and members is None and hasattr(module, "LINEAR"):
             data = _large_data(module, model, opts["userdata"], kind)
+        elif kind is not None and members is None and hasattr(module, "TABLES"):
+            data = _table_data(model, opts["userdata"])
     except Exception as exc:  # noqa: BLE001 - numba and the libraries fail in many ways
         import warnings
 
@@ -296,6 +300,20 @@ def _large_data(module, model, p, kind: str) -> np.ndarray:
     head[:len(p)] = p
     arrays = [head] + [a for m in (ly, lyp) for a in (m.indptr, m.indices, m.data)]
     return np.concatenate([np.asarray(a, dtype=float) for a in arrays])
+
+
+def _table_data(model, p) -> np.ndarray:
+    """The user data of kernels that read run-time tables: the parameters (at least one
+    entry), the data's length, each table's start and number of points, then per table its
+    x, its y and its slopes, the very numbers the Python route's tables interpolate with."""
+    tables = model.table_points()
+    head = [float(v) for v in p] or [0.0]
+    start = len(head) + 1 + 2 * len(tables)
+    index, points = [], []
+    for x, y, slopes in tables:
+        index += [start + len(points), len(x)]
+        points += [*x, *y, *slopes]
+    return np.array([*head, start + len(points), *index, *points], dtype=float)
 
 
 def _check_sparse_layout() -> None:
