@@ -166,8 +166,8 @@ def search(setup: Setup, state: ModelState, screen_top: int, clock: dict[str, fl
 
 def _screen_round(setup: Setup, state: ModelState, log: dict[str, Any]) -> list[Screen]:
     """Stage 3: propose and rank this round's candidates by their linearised gain."""
-    slow, wave, rotating = projections(setup, state.model)
-    if not rotating:  # no shaft angle: no phase to slide, the waveform is best
+    slow, wave, locked = projections(setup, state.model)
+    if not locked:  # no angle-locked ripple: no phase to slide, the waveform is best
         slow = wave
     alt = simulate(setup, state.model, state.params, setup.rtol * 1.5)
     noise = {id(fn): (0.0 if alt is None else
