@@ -127,7 +127,7 @@ def drift_heating(m, rg, rise, tau):
     return {"drift": ("heating", rise, tau)}, {
         "effect": "resistance-drift", "target": "Ra", "targets": ["Ra"],
         "parameters": {"form": "R0*(1 + rise*(1 - exp(-t/tau)))", "rise": rise, "tau_s": tau},
-        "expected": {}}
+        "expected": {"rise": rise, "tau": tau}}
 
 
 def sensor(m, rg, probe, kind, value):
@@ -143,7 +143,8 @@ def stribeck(m, rg, fs, fc, ws, wc=0.05):
         "parameters": {"T_breakaway_Nm": fs, "T_coulomb_Nm": fc, "w_stribeck_rad_s": ws,
                        "w_smoothing_rad_s": wc,
                        "form": "(Tc + (Tbrk - Tc) exp(-(w/ws)^2)) tanh(w/wc)"},
-        "expected": {}}
+        # the catalog's peak s stands over its Coulomb level c
+        "expected": {"c": fc, "s": fs - fc, "ws": ws}}
 
 
 def unbalance(m, rg, amp, ph):

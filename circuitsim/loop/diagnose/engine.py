@@ -184,7 +184,17 @@ def _screen_round(setup: Setup, state: ModelState, log: dict[str, Any]) -> list[
     # ripple seen in the waveform compare as shares, not as sums of squares)
     out = [s for s in out if _score(s) > BIC_MARGIN]
     out.sort(key=lambda s: -s.share)
-    return out
+    # the starts of one shape (a Stribeck speed, a warm-up time) are one effect: the refit of
+    # the best-screened start moves the shape; the others would repeat it
+    seen: set = set()
+    keep = []
+    for s in out:
+        c = s.proposal.candidate
+        tag = (c.kind, "shape") if c.shape else c.key
+        if tag not in seen:
+            seen.add(tag)
+            keep.append(s)
+    return keep
 
 
 SERIES = ("series-resistance", "source-resistance")
