@@ -152,3 +152,27 @@ def test_effect_parameters_have_physical_bounds():
                 assert lo == 0.0, c.key
             if c.effect == "inductor-saturation" and name.endswith("ratio"):
                 assert 0.0 < lo and hi == 1.0, c.key
+
+
+def test_warmup_patch_is_the_closed_form_and_exact_at_null(tmp_path):
+    """A 2 ohm resistor on 1 V warming up by 30 % with tau = 0.1 s draws
+    i(t) = 1 / (2 (1 + 0.3 (1 - exp(-t/0.1)))); the straight-line drift stays its own
+    candidate, and each start of the time constant is one candidate of one kind."""
+    path = tmp_path / "r.yaml"
+    path.write_text("components:\n"
+                    "  - {name: V1, type: V, p: a, n: gnd, V: 1}\n"
+                    "  - {name: R1, type: R, p: a, n: gnd, R: 2}\n"
+                    "probes: {i: R1.i}\n")
+    net = cs.load(path)
+    drifts = [c for c in effects.candidates(net, None, (), duration=0.5)
+              if c.effect == "resistance-drift"]
+    assert len({c.kind for c in drifts}) == 1 and len({c.key for c in drifts}) == len(drifts)
+    warm = next(c for c in drifts if c.shape)
+    model = _compile(build(warm.apply(net.raw)))
+    rise, tau = (n for n in warm.free)
+    t = np.linspace(0.0, 0.5, 51)
+    res = model.simulate(stop=0.5, t_eval=t, params={rise: 0.3, tau: 0.1},
+                         rtol=1e-10, atol=1e-14)
+    assert res["i"] == pytest.approx(1 / (2 * (1 + 0.3 * (1 - np.exp(-t / 0.1)))), rel=1e-8)
+    null = model.simulate(stop=0.5, t_eval=t, rtol=1e-10, atol=1e-14)  # rise at its null
+    assert np.all(null["i"] == 0.5)

@@ -127,7 +127,7 @@ def drift_heating(m, rg, rise, tau):
     return {"drift": ("heating", rise, tau)}, {
         "effect": "resistance-drift", "target": "Ra", "targets": ["Ra"],
         "parameters": {"form": "R0*(1 + rise*(1 - exp(-t/tau)))", "rise": rise, "tau_s": tau},
-        "expected": {}}
+        "expected": {"rise": rise, "tau": tau}}
 
 
 def sensor(m, rg, probe, kind, value):
@@ -143,7 +143,8 @@ def stribeck(m, rg, fs, fc, ws, wc=0.05):
         "parameters": {"T_breakaway_Nm": fs, "T_coulomb_Nm": fc, "w_stribeck_rad_s": ws,
                        "w_smoothing_rad_s": wc,
                        "form": "(Tc + (Tbrk - Tc) exp(-(w/ws)^2)) tanh(w/wc)"},
-        "expected": {}}
+        # the catalog's peak s stands over its Coulomb level c
+        "expected": {"c": fc, "s": fs - fc, "ws": ws}}
 
 
 def unbalance(m, rg, amp, ph):
@@ -282,6 +283,40 @@ def record_specs() -> list[dict]:
         by_class[s["class"]] = k
         s["split"] = "heldout" if k % 3 == 0 else "tune"
         s["seed"] = 1000 + S.index(s)
+    return S + fresh_specs()
+
+
+def fresh_specs() -> list[dict]:
+    """A second blind set, written when the catalog gained a free Stribeck speed and a
+    warm-up law (round 3) and run once on the final code of that round, before anyone looked
+    at its records: other amplitudes, time constants, speeds, noise and frequencies."""
+    A, B = "A", "B"
+    S: list[dict] = []
+
+    def rec(rid, cls, motor, regime, build=None, noise=None, note=""):
+        S.append({"id": rid, "class": cls, "motor": motor, "regime": regime,
+                  "build": build or (lambda a: ({}, [])), "amp": None, "marginal": False,
+                  "noise": noise, "free": [], "note": note, "split": "fresh",
+                  "seed": 2000 + len(S)})
+
+    rec("f01", "null", B, "fast", noise={"current": {"ar1": [3e-3, 0.8]},
+                                          "speed": {"white": 0.05}},
+        note="AR(1) current noise, phi 0.8")
+    rec("f02", "catalog", A, "fast", lambda a: add(source_resistance(A, "fast", 0.04)))
+    rec("f03", "catalog", B, "slow", lambda a: add(drift_heating(B, "slow", 0.05, 1.0)),
+        note="armature warming up: +5 % with a 1 s time constant")
+    rec("f04", "catalog", B, "slow", lambda a: add(stribeck(B, "slow", 2e-3, 8e-4, 2.0)),
+        note="breakaway 2 mN m, Coulomb 0.8 mN m, Stribeck speed 2 rad/s")
+    rec("f05", "catalog", B, "fast", lambda a: add(sensor(B, "fast", "speed", "gain", 1.02)))
+    rec("f06", "two", A, "fast",
+        lambda a: add(brush_drop(A, "fast", 0.1), viscous(A, "fast", 1e-5)))
+    rec("f07", "outside", A, "fast", lambda a: add(outside(
+        "supply-ripple", {"supply_ripple": (0.2, 150.0, "sine")},
+        {"amplitude_V": 0.2, "frequency_Hz": 150.0, "shape": "0.2*sin(2 pi 150 t)"})))
+    rec("f08", "outside", B, "slow", lambda a: add(outside(
+        "torsional-resonance", {"torsion": _torsion(4e-6, 2e-6, 60.0, 0.05)},
+        dict(zip(("J2_kgm2", "k_shaft_Nm_rad", "c_shaft_Nms_rad"),
+                 _torsion(4e-6, 2e-6, 60.0, 0.05), strict=True), resonance_Hz=60.0))))
     return S
 
 

@@ -40,11 +40,23 @@ class Candidate:
     # grid of ``grid`` values of its first parameter instead)
     steps: Mapping[str, float] = field(default_factory=dict)
     grid: tuple[float, ...] = ()
+    # free parameters that shape the effect (a speed, a time constant) rather than size it:
+    # invisible while the size is at its null, so the screen keeps them at their start (one
+    # candidate per start) and only the refit moves them
+    shape: tuple[str, ...] = ()
 
     @property
     def key(self) -> str:
         order = self.fixed.get("order")
-        return f"{self.effect}:{self.target}" + (f":{order:g}" if order is not None else "")
+        tail = "".join(f":{n.rsplit('_', 1)[-1]}={self.free[n][0]:.3g}" for n in self.shape)
+        return f"{self.effect}:{self.target}" + (f":{order:g}" if order is not None else "") \
+            + tail
+
+    @property
+    def kind(self) -> tuple[str, str, float | None]:
+        """(effect, target, order): candidates that differ only in a shape's start are one
+        effect, accepted at most once."""
+        return self.effect, self.target, self.fixed.get("order")
 
     def apply(self, raw: RawNetlist) -> RawNetlist:
         """A patched copy of ``raw`` (the free parameters at their start values)."""
@@ -57,7 +69,14 @@ class Candidate:
 
 
 BRUSH_EPS = 1e-3  # [A]
-STRIBECK_SPEED = 1.0  # [rad/s] below which the breakaway peak acts
+#: [rad/s] starts of the Stribeck speed below which the breakaway peak acts: a decade and a
+#: half each side of 1 rad/s, in steps of about 3 (the refit moves it from the nearest)
+STRIBECK_SPEEDS = (0.1, 0.3, 1.0, 3.0, 10.0)
+#: [rad/s] the sign of the speed is smoothed as the catalog's Coulomb friction smooths it
+STRIBECK_SIGN = 0.01
+#: starts of a warm-up's time constant, as fractions of the record's duration: a drift that
+#: settles within the record is told from a straight line only when tau is below ~its length
+WARMUP_TAUS = (0.1, 0.3, 1.0)
 
 
 def _pname(effect: str, target: str, what: str) -> str:
@@ -127,14 +146,16 @@ def _mechanical_nodes(net: Netlist) -> list[tuple[str, str]]:
 
 
 def candidates(net: Netlist, orders: Mapping[str, list[int]] | None = None,
-               probes: Sequence[str] | Mapping[str, str] = ()) -> list[Candidate]:
+               probes: Sequence[str] | Mapping[str, str] = (),
+               duration: float | None = None) -> list[Candidate]:
     """Every candidate of the catalog for this netlist. ``orders``: harmonic orders per shaft
     node found in the residual (for ``cogging`` and ``emf-harmonic``); ``probes``: the
     measured probes (for the sensor effects), or a mapping from each to its unit (a sensor
-    delay is built from a voltage, so it needs the probe's unit)."""
+    delay is built from a voltage, so it needs the probe's unit); ``duration``: the record's
+    length [s] (a warm-up's time constant starts from it; without it, no warm-up)."""
     orders = orders or {}
     return [*_electrical(net), *_converter_effects(net, orders), *_mechanical(net, orders),
-            *_component_laws(net), *_sensors(probes)]
+            *_component_laws(net, duration), *_sensors(probes)]
 
 
 def _electrical(net: Netlist) -> list[Candidate]:
@@ -210,14 +231,7 @@ def _mechanical(net: Netlist, orders: Mapping[str, list[int]]) -> list[Candidate
             steps={p: 1e-4 if rot else 1e-1}))
         if rot:
             if _has_friction(net, node):
-                s_ = _pname("stribeck-friction", node, "s")
-                out.append(Candidate(
-                    "stribeck-friction", node, {s_: (0.0, 0.0, 1e4)}, {},
-                    f"a breakaway (Stribeck) peak of the friction on {node} at low speed",
-                    lambda r, n=node, s_=s_: _add(r, {
-                        "name": f"SF_{n}", "type": "friction", "shaft": n, "tau_c": 0.0,
-                        "tau_brk": s_, "w_brk": STRIBECK_SPEED}),
-                    steps={s_: 1e-4}))
+                out.extend(_stribeck(node))
             for k in orders.get(node, []):
                 a = _pname("cogging", f"{node}_{k}", "a")
                 b = _pname("cogging", f"{node}_{k}", "b")
@@ -235,7 +249,41 @@ def _mechanical(net: Netlist, orders: Mapping[str, list[int]]) -> list[Candidate
     return out
 
 
-def _component_laws(net: Netlist) -> list[Candidate]:
+def _stribeck(node: str) -> list[Candidate]:
+    """A breakaway peak over the node's Coulomb friction: s exp(-(w/ws)^2) sign(w) [N*m],
+    one candidate per start of the Stribeck speed ws."""
+    out = []
+    for i, w0 in enumerate(STRIBECK_SPEEDS):
+        # names of their own: a joint screen carries every start at once
+        s_, ws = (_pname("stribeck-friction", f"{node}_{i}", x) for x in ("s", "ws"))
+        law = (f"-{s_}*exp(-({node}.w/({ws}*1[rad/s]))^2)*tanh({node}.w/{STRIBECK_SIGN!r}"
+               "[rad/s])*1[N*m]")
+        out.append(Candidate(
+            "stribeck-friction", node, {s_: (0.0, 0.0, 1e4), ws: (w0, 1e-3, 1e3)}, {},
+            f"a breakaway (Stribeck) peak of the friction on {node} at low speed",
+            lambda r, n=node, i=i, law=law: _add(r, {"name": f"SF{i}_{n}", "type": "btorque",
+                                                     "shaft": n, "expr": law}),
+            steps={s_: 1e-4, ws: 1e-2 * w0}, shape=(ws,)))
+    return out
+
+
+def _warmup(name: str, duration: float) -> list[Candidate]:
+    """A resistance settling to a warmer value: R (1 + rise (1 - exp(-t/tau))), in series as
+    the resistor's own voltage times the rise, so that it holds whatever R is written as."""
+    out = []
+    for i, f in enumerate(WARMUP_TAUS):
+        rise, tau = (_pname("resistance-drift", f"{name}_{i}", x) for x in ("rise", "tau"))
+        law = f"{rise}*(1 - exp(-t/({tau}*1[s])))*{name}.v"
+        out.append(Candidate(
+            "resistance-drift", name, {rise: (0.0, -0.9, 10.0),
+                                       tau: (f * duration, 1e-6, 1e6)}, {},
+            f"{name} warming up to a final value with a time constant",
+            lambda r, n=name, i=i, law=law: _insert_series(r, n, f"RW{i}_{n}", law),
+            steps={rise: 1e-3, tau: 1e-2 * f * duration}, shape=(tau,)))
+    return out
+
+
+def _component_laws(net: Netlist, duration: float | None = None) -> list[Candidate]:
     out: list[Candidate] = []
     for c in _declared(net):
         if c.type in ("L", "inductor"):
@@ -252,6 +300,8 @@ def _component_laws(net: Netlist) -> list[Candidate]:
                 "resistance-drift", c.name, {p: (0.0, -10.0, 10.0)}, {},
                 f"{c.name} drifting with time (warming up)",
                 lambda r, n=c.name, p=p: _drift(r, n, p), steps={p: 1e-3}))
+            if duration:
+                out.extend(_warmup(c.name, duration))
     return out
 
 

@@ -144,3 +144,18 @@ def refit(setup: Setup, model, free: Sequence[str], params: Mapping[str, float],
 def weighted_sse(setup: Setup, fit) -> float:
     e = weighted(setup, fit.residuals)
     return float(e @ e)
+
+
+def angle_locked(model) -> bool:
+    """Whether the model's laws read a shaft angle (a declared ripple, cogging): then a change
+    of speed slides that ripple out of phase, and speed effects are compared on slow features
+    rather than on the waveform. A shaft whose angle only integrates its speed holds no such
+    phase, and the waveform, with every sample, is the sharper view."""
+    meta = model.meta
+    angles = [s for s, d in meta.get("integrals", {}).items() if d == "rotational"]
+    states, pattern = meta.get("states"), meta.get("fy_pattern")
+    if not angles or states is None or pattern is None:
+        return bool(angles)  # no pattern to tell by: assume the ripple is there
+    cols = {states.index(a) for a in angles if a in states}
+    # an angle's own row (phi' = w) has no entry in dF/dphi: any entry is a law of the angle
+    return any(int(c) in cols for c in pattern[1])

@@ -20,6 +20,7 @@ from circuitsim.errors import CircuitsimError
 from circuitsim.loop.diagnose.context import (
     ModelState,
     Setup,
+    angle_locked,
     refit,
     simulate,
     weighted,
@@ -95,8 +96,7 @@ def refit_trial(setup: Setup, state: ModelState, candidates: Sequence[Any],
         weighted(setup, {p: setup.record[p] - start_sim[p] for p in setup.probes}))))
     # an effect that changes the speed slides an angle-locked ripple out of phase: its
     # waveform cost has false minima, so slow features come first (as in the declared fit)
-    staged = "rotational" in model.meta.get("integrals", {}).values() and \
-        not any(on_waveform(c) for c in candidates)
+    staged = angle_locked(model) and not any(on_waveform(c) for c in candidates)
     try:
         fit = refit(setup, model, free, params, bounds, staged=staged)
     except CircuitsimError:

@@ -166,8 +166,8 @@ def search(setup: Setup, state: ModelState, screen_top: int, clock: dict[str, fl
 
 def _screen_round(setup: Setup, state: ModelState, log: dict[str, Any]) -> list[Screen]:
     """Stage 3: propose and rank this round's candidates by their linearised gain."""
-    slow, wave, rotating = projections(setup, state.model)
-    if not rotating:  # no shaft angle: no phase to slide, the waveform is best
+    slow, wave, locked = projections(setup, state.model)
+    if not locked:  # no angle-locked ripple: no phase to slide, the waveform is best
         slow = wave
     alt = simulate(setup, state.model, state.params, setup.rtol * 1.5)
     noise = {id(fn): (0.0 if alt is None else
@@ -184,7 +184,17 @@ def _screen_round(setup: Setup, state: ModelState, log: dict[str, Any]) -> list[
     # ripple seen in the waveform compare as shares, not as sums of squares)
     out = [s for s in out if _score(s) > BIC_MARGIN]
     out.sort(key=lambda s: -s.share)
-    return out
+    # the starts of one shape (a Stribeck speed, a warm-up time) are one effect: the refit of
+    # the best-screened start moves the shape; the others would repeat it
+    seen: set = set()
+    keep = []
+    for s in out:
+        c = s.proposal.candidate
+        tag = (c.kind, "shape") if c.shape else c.key
+        if tag not in seen:
+            seen.add(tag)
+            keep.append(s)
+    return keep
 
 
 SERIES = ("series-resistance", "source-resistance")

@@ -25,6 +25,7 @@ import numpy as np
 from circuitsim.loop.diagnose.context import (
     ModelState,
     Setup,
+    angle_locked,
     compile_raw,
     simulate,
     simulate_many,
@@ -61,12 +62,15 @@ def propose(setup: Setup, state: ModelState, orders: Mapping[str, list[int]],
     from circuitsim.netlist.load import build
 
     declared = effects.declared_orders(state.raw)
-    chosen = {c.candidate.key for c in state.chosen}
+    # one of each effect on each target: the starts of a shape are one effect
+    chosen = {c.candidate.kind for c in state.chosen}
     out = []
     units = state.model.meta.get("units", {})
     probes = {p: units[p] for p in setup.probes if p in units}
-    for c in effects.candidates(build(state.raw), orders, probes or setup.probes):
-        if c.key in tried or c.key in chosen:
+    t = np.asarray(setup.record.t, float)
+    for c in effects.candidates(build(state.raw), orders, probes or setup.probes,
+                                duration=float(t[-1] - t[0])):
+        if c.key in tried or c.kind in chosen:
             continue
         order = c.fixed.get("order")
         same = order is not None and int(order) in declared.get(
@@ -86,7 +90,8 @@ def on_waveform(candidate) -> bool:
 
 
 def projections(setup: Setup, model) -> tuple[Projector, Projector, bool]:
-    """(slow-feature projector, waveform projector, whether a shaft turns)."""
+    """(slow-feature projector, waveform projector, whether a ripple is locked to a shaft's
+    angle)."""
     from circuitsim.loop.fit import slow_features, smoothing_windows
 
     rec = setup.record
@@ -99,8 +104,7 @@ def projections(setup: Setup, model) -> tuple[Projector, Projector, bool]:
     def wave(y) -> np.ndarray:
         return weighted(setup, y)
 
-    rotating = "rotational" in model.meta.get("integrals", {}).values()
-    return slow, wave, rotating
+    return slow, wave, angle_locked(model)
 
 
 def screen(setup: Setup, state: ModelState, proposal: Proposal, project: Projector,
@@ -122,7 +126,7 @@ def screen(setup: Setup, state: ModelState, proposal: Proposal, project: Project
             if norm0 > 0.0 else None
     # the base and one step of each parameter in one batched run (one step sequence for all:
     # the differences carry no integration noise of their own)
-    steps = {n: cand.steps.get(n, 1e-3) for n in cand.free}
+    steps = {n: cand.steps.get(n, 1e-3) for n in sized(cand)}
     runs = simulate_many(setup, model, [base, *({**base, n: base[n] + h}
                                                  for n, h in steps.items())])
     if runs[0] is None:
@@ -158,11 +162,17 @@ def screen_many(setup: Setup, state: ModelState, proposals: list[Proposal],
     for prop in joint:
         setup.log(f"screening {prop.candidate.key}")
         fn = projector(prop)
-        mine = {n: runs[members[n]] for n in prop.candidate.free}
+        mine = {n: runs[members[n]] for n in sized(prop.candidate)}
         retune = _columns(runs, members, accepted, fn)
         out.append(_from_runs(setup, prop, model, runs[0], mine, fn, noise(fn),
                               _null_params(state, joint), retune))
     return out
+
+
+def sized(candidate) -> list[str]:
+    """The free parameters the score test linearises: all but the shape's (a shape moves
+    nothing while the size is at its null)."""
+    return [n for n in candidate.free if n not in candidate.shape]
 
 
 def _accepted_steps(state: ModelState) -> dict[str, float]:
@@ -203,7 +213,7 @@ def _joint_runs(setup: Setup, state: ModelState, proposals: list[Proposal]
         return None, None, {}
     base = _null_params(state, proposals)
     sets, members = [base], {}
-    steps = {n: h for p in proposals for n in p.candidate.free
+    steps = {n: h for p in proposals for n in sized(p.candidate)
              for h in [p.candidate.steps.get(n, 1e-3)]}
     for n, h in {**steps, **_accepted_steps(state)}.items():
         members[n] = len(sets)
@@ -242,7 +252,8 @@ def _from_runs(setup: Setup, proposal: Proposal, model, y0, stepped: Mapping[str
         alone, *_ = np.linalg.lstsq(retune, e0, rcond=None)
         gain -= float(e0 @ (retune @ alone))
     start = {n: _inside(cand.free[n], base[n] + float(c))
-             for n, c in zip(cand.free, coef[:k], strict=True)}
+             for n, c in zip(stepped, coef[:k], strict=True)}
+    start.update({n: cand.free[n][0] for n in cand.shape})
     return Screen(proposal, gain / norm0, start, None, e0.size)
 
 
