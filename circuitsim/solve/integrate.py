@@ -127,7 +127,7 @@ def simulate(model, stop: float | None = None, params: Mapping[str, float] | Non
                                             start, rec, chunk)
     t_all, y_all, yp_all = rec.arrays(n)
     return _finite(SimResult(t_all, y_all, yp_all, model.state_names, status, detail, nfev,
-                             njev, model, p))
+                             njev, model, p, np.array(rec.event_times)))
 
 
 def consistent_start(model, run: Settings, params: Mapping[str, float] | None, p: tuple
@@ -179,6 +179,11 @@ class Recorder:
         self.ts: list[np.ndarray] = []
         self.ys: list[np.ndarray] = []
         self.yps: list[np.ndarray] = []
+        self.event_times: list[float] = []
+
+    def note_event(self, t: float) -> None:
+        """An instant [s] at which events switched something."""
+        self.event_times.append(t)
 
     def __call__(self, times: np.ndarray, yy: np.ndarray, yyp: np.ndarray) -> None:
         idx = self.counter + np.arange(times.size)
@@ -240,7 +245,7 @@ def integrate_system(system: System, run: Settings, edges: list[float],
     y, yp = start
     if system.switching is not None:  # the modes at t = 0 follow the initial values
         try:
-            y, yp = system.switching.settle(0.0, y, yp)
+            y, yp = system.switching.start(0.0, y, yp)
         except SolverError as exc:
             return Status.SOLVER_FAILED, exc.bare, 0, 0
     step = events.segment if system.switching is not None else _segment
