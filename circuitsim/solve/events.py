@@ -174,12 +174,18 @@ class Switching:
 
     def note(self, t: float, fired: np.ndarray) -> str | None:
         """Record a root; a message if the roots pile up with no time between them."""
-        self.recent.append((t, tuple(self.owners(fired))))
+        self.recent.append((t, tuple(self.owners(fired)), bool(fired[self.n_ev:].any())))
         if len(self.recent) == ZENO_COUNT and t - self.recent[0][0] <= self.span:
-            who = sorted({o for _, names in self.recent for o in names})
+            who = sorted({o for _, names, _ in self.recent for o in names})
+            fix = ("give the switch a hysteresis (Vh) or a control that does not sit on its "
+                   "threshold")
+            if any(rel for *_, rel in self.recent):
+                fix = (f"{fix}; a relation in an expression (if, sign, abs, min, max) that "
+                       f"switches back at once has no consistent side there (sign(w) "
+                       f"friction at rest is one): write it with smooth_sign or smooth_abs, "
+                       f"or use a stick-slip element (stick_clutch)")
             return (f"at t = {t:.9g} s {', '.join(who)} switched {ZENO_COUNT} times within "
-                    f"{t - self.recent[0][0]:.3g} s (chatter): give the switch a hysteresis "
-                    f"(Vh) or a control that does not sit on its threshold")
+                    f"{t - self.recent[0][0]:.3g} s (chatter): {fix}")
         return None
 
 
