@@ -521,13 +521,11 @@ def generate(dae) -> tuple[str, dict[str, Any]]:
     # only when asked for: a circuit of thousands of parts exports tens of thousands of
     # quantities, and evaluating them all at every output point would cost gigabytes
     src += ["OBSERVED = ["] + [f"    {_print(e, vector)!r}," for e in obs] + ["]", ""]
-    ev_src, ev_meta = _events(dae, ren, n, n_par, scalar)
-    src += ev_src
-    cross_src, cross_meta = _crossings(dae, ren, n, n_par, scalar)
-    src += cross_src
     meta = _meta(dae, names_out, init_syms)
-    meta.update(ev_meta)
-    meta.update(cross_meta)
+    for part in (_events, _crossings):  # separate factories: no cost without switching
+        part_src, part_meta = part(dae, ren, n, n_par, scalar)
+        src += part_src
+        meta.update(part_meta)
     meta.update({"jac_nnz": len(pattern), "jac_pattern": [[i for i, _ in pattern],
                                                           [j for _, j in pattern]],
                  "fy_pattern": [[i for i, _ in fy], [j for _, j in fy]],

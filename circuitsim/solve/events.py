@@ -206,7 +206,7 @@ def refuse(model, what: str) -> None:
                           f"(model: smooth, pwm_leg)")
 
 
-def _ida(residual, opts: dict):
+def plain_ida(residual, opts: dict):
     """scikit-sundae's IDA (the lean import); root functions have no compiled route, so the
     compiled kernels a fit or a sweep asks for are not offered here."""
     from circuitsim.solve.sundae import ida_class
@@ -217,7 +217,7 @@ def _ida(residual, opts: dict):
         return ida_class()(residual, **opts)
 
 
-def _targets(t_eval: np.ndarray, a: float, b: float, eps: float):
+def output_targets(t_eval: np.ndarray, a: float, b: float, eps: float):
     """Output times of (a, b]: the times to stop at, whether each is wanted, their labels
     (one within eps of the corner b is reported as the state at b)."""
     mine = t_eval[(t_eval > a + eps) & (t_eval <= b + eps)]
@@ -233,13 +233,13 @@ def segment(system, run, a: float, b: float, eps: float, state, record, chunk: i
     """Integrate over (a, b] as integrate's segments do, stopping at every root of a guard
     to switch and restart; None, or why it failed."""
     sw: Switching = system.switching
-    targets, wanted, labels = _targets(run.t_eval, a, b, eps)
+    targets, wanted, labels = output_targets(run.t_eval, a, b, eps)
     lo = 0
     while lo < targets.size:
         part = targets[lo:lo + chunk]
         opts = {**system.opts, **sw.ida_options()}  # the modes held since the last switch
         try:
-            sol = _ida(system.residual, opts).solve(np.concatenate([[state.t], part]),
+            sol = plain_ida(system.residual, opts).solve(np.concatenate([[state.t], part]),
                                                     state.y, state.yp)
         except Exception as exc:  # noqa: BLE001 - the wrapper raises assorted types
             return (f"at t = {state.t:.6g} s the integrator stopped ({exc!r}); try "

@@ -212,6 +212,7 @@ class System:
     restart: object  # (t, y, y') -> consistent (y, y') at t
     names: tuple[str, ...]
     switching: events.Switching | None = None  # discrete states changed at roots
+    rows: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(0))  # [s] stops
 
 
 def model_system(model, run: Settings, p: tuple) -> System:
@@ -228,7 +229,25 @@ def model_system(model, run: Settings, p: tuple) -> System:
             return switching.restart(t, y, yp)
         return consistent_initial(model, t, y, p, yp_guess=yp)
 
-    return System(model.fns[0], opts, restart, model.state_names, switching)
+    return System(model.fns[0], opts, restart, model.state_names, switching,
+                  table_rows(model, run.stop))
+
+
+def table_rows(model, stop: float) -> np.ndarray:
+    """Times [s] inside (0, stop) where a table source's interpolant changes slope: its
+    rows (and its ends, where it starts to hold), except where the slope is the same on both
+    sides. IDA stops exactly at each (SPICE stops at every PWL point) without a restart."""
+    out = []
+    for comp in model.netlist.components:
+        for table in comp.tables:
+            x, y = np.asarray(table.x, float), np.asarray(table.y, float)
+            slopes = np.concatenate([[0.0], np.diff(y) / np.diff(x), [0.0]])
+            kink = np.abs(np.diff(slopes)) > 1e-12 * (np.abs(slopes[1:]) + np.abs(slopes[:-1]))
+            out.append(x[kink])
+    if not out:
+        return np.zeros(0)
+    rows = np.unique(np.concatenate(out))
+    return rows[(rows > 0.0) & (rows < stop)]
 
 
 def _integrate(model, run: Settings, p: tuple, edges: list[float],
@@ -248,7 +267,8 @@ def integrate_system(system: System, run: Settings, edges: list[float],
             y, yp = system.switching.start(0.0, y, yp)
         except SolverError as exc:
             return Status.SOLVER_FAILED, exc.bare, 0, 0
-    step = events.segment if system.switching is not None else _segment
+    step = events.segment if system.switching is not None else \
+        _stepped if system.rows.size else _segment
     first = run.t_eval[run.t_eval <= eps]
     if first.size:
         record(first[:1], y[None, :], yp[None, :])
@@ -312,6 +332,47 @@ def _segment(system: System, run: Settings, a: float, b: float, eps: float,
             return _failure(system.names, sol, t_fail, run.rtol, run.atol)
         state.y, state.yp, state.t = got_y[-1], got_yp[-1], float(got_t[-1])
     return None
+
+
+def _stepped(system: System, run: Settings, a: float, b: float, eps: float,
+             state: _Segment, record: Recorder, chunk: int) -> str | None:
+    """(a, b] with IDA's stop time on each table row in turn: it never steps across a row
+    and is not restarted there (a restart per row would cost a new start for each of a long
+    record's rows); outputs between rows are interpolated as in ``_segment``."""
+    targets, wanted, labels = events.output_targets(run.t_eval, a, b, eps)
+    rows = system.rows[(system.rows > a + eps) & (system.rows < b - eps)]
+    near = np.searchsorted(targets, rows)  # a row on an output time is stopped at as such
+    close = np.minimum(np.abs(targets[np.minimum(near, targets.size - 1)] - rows),
+                       np.abs(targets[np.maximum(near - 1, 0)] - rows)) <= eps
+    stops = np.append(rows, b)  # rows are sorted
+    times = np.concatenate([targets, rows[~close]])
+    order = np.argsort(times, kind="stable")
+    ida = events.plain_ida(system.residual, system.opts)
+    ida.init_step(state.t, state.y, state.yp)
+    kept: list[tuple[float, np.ndarray, np.ndarray]] = []
+    for k in order:
+        tout = float(times[k])
+        tstop = float(stops[np.searchsorted(stops, tout - eps)])
+        sol = ida.step(tout, tstop=tstop)
+        if not sol.success:
+            return _failure(system.names, _Last(sol), float(sol.t), run.rtol, run.atol)
+        state.t, state.y, state.yp = float(tout), np.asarray(sol.y), np.asarray(sol.yp)
+        if k < targets.size and wanted[k]:
+            kept.append((labels[k], state.y, state.yp))
+        if len(kept) >= chunk or (kept and k == order[-1]):
+            record(np.array([x[0] for x in kept]), np.array([x[1] for x in kept]),
+                   np.array([x[2] for x in kept]))
+            kept = []
+    state.nfev += int(sol.nfev or 0)
+    state.njev += int(sol.njev or 0)
+    return None
+
+
+class _Last:
+    """One step's result shaped as a solve's (rows of y and y'), for ``_failure``."""
+
+    def __init__(self, sol):
+        self.y, self.yp, self.message = np.atleast_2d(sol.y), np.atleast_2d(sol.yp), sol.message
 
 
 def _finite(res: SimResult) -> SimResult:
