@@ -257,7 +257,7 @@ def segment(system, run, a: float, b: float, eps: float, state, record, chunk: i
             record(labels[lo:lo + done][w], got_y[1:done + 1][w], got_yp[1:done + 1][w])
         lo += done
         if root:
-            why = _switch(sw, sol, got_t[-1], got_y[-1], got_yp[-1], state)
+            why = switch_at(sw, sol, got_t[-1], got_y[-1], got_yp[-1], state)
             if why:
                 return why
             record.note_event(state.t)
@@ -272,7 +272,7 @@ def segment(system, run, a: float, b: float, eps: float, state, record, chunk: i
     return None
 
 
-def _switch(sw: Switching, sol, t: float, y: np.ndarray, yp: np.ndarray, state
+def switch_at(sw: Switching, sol, t: float, y: np.ndarray, yp: np.ndarray, state
             ) -> str | None:
     """Apply the events IDA found at t and settle; the state moves to t."""
     fired = np.asarray(sol.i_events)[-1] != 0

@@ -267,8 +267,8 @@ def integrate_system(system: System, run: Settings, edges: list[float],
             y, yp = system.switching.start(0.0, y, yp)
         except SolverError as exc:
             return Status.SOLVER_FAILED, exc.bare, 0, 0
-    step = events.segment if system.switching is not None else \
-        _stepped if system.rows.size else _segment
+    step = _stepped if system.rows.size else \
+        events.segment if system.switching is not None else _segment
     first = run.t_eval[run.t_eval <= eps]
     if first.size:
         record(first[:1], y[None, :], yp[None, :])
@@ -334,38 +334,70 @@ def _segment(system: System, run: Settings, a: float, b: float, eps: float,
     return None
 
 
-def _stepped(system: System, run: Settings, a: float, b: float, eps: float,
-             state: _Segment, record: Recorder, chunk: int) -> str | None:
-    """(a, b] with IDA's stop time on each table row in turn: it never steps across a row
-    and is not restarted there (a restart per row would cost a new start for each of a long
-    record's rows); outputs between rows are interpolated as in ``_segment``."""
+def _stop_plan(system: System, run: Settings, a: float, b: float, eps: float):
+    """The outputs of (a, b] (times, wanted, labels), every time to step to (outputs, then
+    rows that are no output) and the stop times (rows, then b)."""
     targets, wanted, labels = events.output_targets(run.t_eval, a, b, eps)
     rows = system.rows[(system.rows > a + eps) & (system.rows < b - eps)]
     near = np.searchsorted(targets, rows)  # a row on an output time is stopped at as such
     close = np.minimum(np.abs(targets[np.minimum(near, targets.size - 1)] - rows),
                        np.abs(targets[np.maximum(near - 1, 0)] - rows)) <= eps
-    stops = np.append(rows, b)  # rows are sorted
     times = np.concatenate([targets, rows[~close]])
+    return targets, wanted, labels, times, np.append(rows, b)  # rows are sorted
+
+
+def _stepped(system: System, run: Settings, a: float, b: float, eps: float,
+             state: _Segment, record: Recorder, chunk: int) -> str | None:
+    """(a, b] with IDA's stop time on each table row in turn: it never steps across a row
+    and is not restarted there (a restart per row would cost a new start for each of a long
+    record's rows); outputs between rows are interpolated as in ``_segment``. A root of a
+    switching guard switches (events.switch_at) and restarts IDA there."""
+    targets, wanted, labels, times, stops = _stop_plan(system, run, a, b, eps)
     order = np.argsort(times, kind="stable")
-    ida = events.plain_ida(system.residual, system.opts)
-    ida.init_step(state.t, state.y, state.yp)
+    ida, sol = _stepper(system, state), None
     kept: list[tuple[float, np.ndarray, np.ndarray]] = []
-    for k in order:
-        tout = float(times[k])
-        tstop = float(stops[np.searchsorted(stops, tout - eps)])
-        sol = ida.step(tout, tstop=tstop)
-        if not sol.success:
-            return _failure(system.names, _Last(sol), float(sol.t), run.rtol, run.atol)
-        state.t, state.y, state.yp = float(tout), np.asarray(sol.y), np.asarray(sol.yp)
+    i = 0
+    while i < order.size:
+        k, tout = order[i], float(times[order[i]])
+        if tout > state.t + eps:
+            sol = ida.step(tout, tstop=float(stops[np.searchsorted(stops, tout - eps)]))
+            if sol.status == events.ROOT_RETURN:
+                _count(state, sol)
+                why = events.switch_at(system.switching, sol, sol.t, sol.y, sol.yp, state)
+                if why:
+                    return why
+                record.note_event(state.t)
+                ida, sol = _stepper(system, state), None
+                continue
+            if not sol.success:
+                return _failure(system.names, _Last(sol), float(sol.t), run.rtol, run.atol)
+            state.t, state.y, state.yp = tout, np.asarray(sol.y), np.asarray(sol.yp)
         if k < targets.size and wanted[k]:
             kept.append((labels[k], state.y, state.yp))
-        if len(kept) >= chunk or (kept and k == order[-1]):
-            record(np.array([x[0] for x in kept]), np.array([x[1] for x in kept]),
-                   np.array([x[2] for x in kept]))
+        if len(kept) >= chunk or (kept and i == order.size - 1):
+            record(*(np.array([x[c] for x in kept]) for c in range(3)))
             kept = []
-    state.nfev += int(sol.nfev or 0)
-    state.njev += int(sol.njev or 0)
+        i += 1
+    _count(state, sol)
     return None
+
+
+def _stepper(system: System, state: _Segment):
+    """An IDA started at the state, for step-by-step calls (with the switching's root
+    functions and modes when the model switches)."""
+    opts = system.opts
+    if system.switching is not None:
+        opts = {**opts, **system.switching.ida_options()}
+    ida = events.plain_ida(system.residual, opts)
+    ida.init_step(state.t, state.y, state.yp)
+    return ida
+
+
+def _count(state: _Segment, sol) -> None:
+    """Add one IDA's residual and Jacobian calls (its counters run from its start)."""
+    if sol is not None:
+        state.nfev += int(sol.nfev or 0)
+        state.njev += int(sol.njev or 0)
 
 
 class _Last:
