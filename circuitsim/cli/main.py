@@ -338,8 +338,21 @@ def component_table(markdown: bool = False) -> str:
     return "\n".join(f"{a:<20} {b:<40} {c}\n{'':<20} {d}" for a, b, c, d in rows)
 
 
+#: What the table cannot say about the parameters it lists as expressions and waveforms.
+COMPONENTS_NOTE = """
+Expressions (BV, BI, btorque, bforce; m of pwm_leg, half_bridge): t, parameters, NODE.v, SHAFT.w,
+COMP.i, ...; + - * / ^, sin cos tan exp log sqrt atan tanh, abs sign min max clamp,
+< <= > >= == !=, if(cond, then, else), smooth_abs(x, eps), smooth_sign(x, eps).
+A relation (< <= > >=, also inside abs, sign, min, max, clamp, if) of t or of a circuit
+quantity switches by events: held between them, flipped at the root IDA finds, restarted
+consistently (SimResult.t_events). smooth_abs and smooth_sign never switch.
+Waveforms: every corner is a breakpoint; a table source's rows are stops of the integrator."""
+
+
 def cmd_components(args) -> int:
     print(component_table(markdown=args.markdown))
+    if not args.markdown:
+        print(COMPONENTS_NOTE)
     return 0
 
 

@@ -20,7 +20,7 @@ import ast
 import re
 from typing import Any
 
-CODEGEN_VERSION = "19"
+CODEGEN_VERSION = "20"
 
 # [unknowns] from here on the residual's linear part is a sparse matrix product (measured on
 # RLC ladders: 5x slower than the scalar code at 16 unknowns, 2x at 50, equal at 100) ...
@@ -723,10 +723,11 @@ def generate(dae) -> tuple[str, dict[str, Any]]:
     # only when asked for: a circuit of thousands of parts exports tens of thousands of
     # quantities, and evaluating them all at every output point would cost gigabytes
     src += ["OBSERVED = ["] + [f"    {_print(e, vector)!r}," for e in obs] + ["]", ""]
-    ev_src, ev_meta = _events(dae, ren, n, n_par, scalar)
-    src += ev_src
     meta = _meta(dae, names_out, init_syms)
-    meta.update(ev_meta)
+    for part in (_events, _crossings):  # separate factories: no cost without switching
+        part_src, part_meta = part(dae, ren, n, n_par, scalar)
+        src += part_src
+        meta.update(part_meta)
     meta.update({"jac_nnz": len(pattern), "jac_pattern": [[i for i, _ in pattern],
                                                           [j for _, j in pattern]],
                  "fy_pattern": [[i for i, _ in fy], [j for _, j in fy]],
@@ -762,6 +763,26 @@ def _events(dae, ren: dict, n: int, n_par: int, scalar) -> tuple[list[str], dict
                  post=["        return out"], fail=f"out = [math.nan] * {len(values)}")
     src += ["    return guards, jumps", ""]
     return src, {"events": info}
+
+
+def _crossings(dae, ren: dict, n: int, n_par: int, scalar
+               ) -> tuple[list[str], dict[str, Any]]:
+    """``make_crossings(T, TD)`` -> ``crossings(t, y, yp, p)``: the distance of every held
+    relation (positive where it holds), then the scale of its hysteresis band
+    (``meta["crossings"]``: its owner and the index of its mode in ``p``)."""
+    crossings = getattr(dae, "crossings", ())
+    if not crossings:
+        return [], {"crossings": []}
+    where = {s: k for k, s in enumerate(dae.params)}
+    out = [c.distance.xreplace(ren) for c in crossings] + \
+          [c.scale.xreplace(ren) for c in crossings]
+    src = ["def make_crossings(T, TD):"]
+    src += _body("crossings", "t, y, yp, p", out, [f"out[{k}]" for k in range(len(out))],
+                 n, n_par, scalar, pre=[f"        out = numpy.zeros({len(out)})"],
+                 post=["        return out"], fail="out[:] = math.nan")
+    src += ["    return crossings", ""]
+    return src, {"crossings": [{"owner": c.owner, "mode": where[c.mode], "name": c.mode.name}
+                               for c in crossings]}
 
 
 def _meta(dae, names_out: list[str], init_syms: list) -> dict[str, Any]:

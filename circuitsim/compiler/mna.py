@@ -52,6 +52,18 @@ class SwitchEvent:
 
 
 @dataclass(frozen=True)
+class Crossing:
+    """A relation of a behavioural expression that switches (see ``hold_relations``):
+    ``distance`` is positive where it holds, ``scale`` sizes its hysteresis band, ``mode`` is
+    the run-time parameter holding its truth between events (-1: evaluated as written)."""
+
+    owner: str
+    mode: sp.Symbol
+    distance: sp.Expr
+    scale: sp.Expr
+
+
+@dataclass(frozen=True)
 class Dae:
     """F(t, x, x', p) = 0 in sympy, with every name a probe may ask for."""
 
@@ -69,6 +81,7 @@ class Dae:
     units: Mapping[str, str] = field(default_factory=dict)
     integrals: Mapping[str, str] = field(default_factory=dict)  # state name -> domain
     events: tuple[SwitchEvent, ...] = ()
+    crossings: tuple[Crossing, ...] = ()
 
     def differentiated(self) -> set[sp.Symbol]:
         """Unknowns whose derivative appears in some equation."""
@@ -137,6 +150,7 @@ class _Assembly:
         self.integral_domains: dict[str, str] = {}
         self.flows: dict[str, list[sp.Symbol]] = {}
         self.events: list[SwitchEvent] = []
+        self.crossings: list[Crossing] = []
 
     def new(self, name: str) -> sp.Symbol:
         s = sp.Symbol(name, real=True)
@@ -270,7 +284,7 @@ def assemble(net: Netlist) -> Dae:
     return Dae(asm.t, tuple(asm.unknowns), dict(asm.der.table), tuple(asm.equations),
                tuple(asm.origins), tuple(asm.params.values()), asm.exports, asm.initial,
                probes, tuple(asm.tables), tuple(asm.breaks), asm.units, asm.integral_domains,
-               tuple(asm.events))
+               tuple(asm.events), tuple(asm.crossings))
 
 
 def _instantiate(spec: ComponentSpec, asm: _Assembly) -> tuple[Component, Scope]:
@@ -342,7 +356,34 @@ def _expression(spec: ComponentSpec, key: str, asm: _Assembly) -> sp.Expr:
              " (use netlist parameters, t, or quantities such as NODE.v, SHAFT.w, "
              "COMP.i)"), spec.loc, spec.name)
     unit = spec.cls.declared()[key].unit
-    return _behavioural(node, scope_names, unit, asm.units, _dims(asm.net), spec, key)
+    out = _behavioural(node, scope_names, unit, asm.units, _dims(asm.net), spec, key)
+    return hold_relations(out, asm, f"{spec.name}.{key}", spec.name)
+
+
+def hold_relations(e: Any, asm: _Assembly, prefix: str, owner: str) -> Any:
+    """Each relation (``<``, ``<=``, ``>``, ``>=`` inside if, abs, sign, min, max, clamp or a
+    comparison) of ``e`` that depends on time or on an unknown becomes a Crossing, as
+    Modelica treats relations: its truth is a run-time parameter ``PREFIX.modeK`` held
+    between events, so the residual is smooth within a step and Newton cannot chatter
+    across the kink; the integrator finds the root of its distance and switches it there.
+    Mode -1 evaluates the relation as written (operating point, AC, batches and any run
+    that does not follow events). Relations of parameters alone, and == or != (true only
+    at an instant), stay as written."""
+    if not isinstance(e, sp.Basic) or not e.has(sp.Piecewise):
+        return e
+    live = asm.der.unknowns | asm.der.derivs | {asm.t}
+    held: dict[sp.Basic, sp.Basic] = {}
+    for pw in e.atoms(sp.Piecewise):
+        for _, cond in pw.args:
+            for rel in cond.atoms(sp.Lt, sp.Le, sp.Gt, sp.Ge):
+                if rel in held or not rel.free_symbols & live:
+                    continue
+                mode = asm.psym(f"{prefix}.mode{len(held)}")
+                sign = 1 if isinstance(rel, (sp.Gt, sp.Ge)) else -1
+                asm.crossings.append(Crossing(owner, mode, sign * (rel.lhs - rel.rhs),
+                                              sp.Abs(rel.lhs) + sp.Abs(rel.rhs)))
+                held[rel] = sp.Or(sp.And(mode < 0, rel), mode > sp.Rational(1, 2))
+    return e.xreplace(held) if held else e
 
 
 def _dims(net: Netlist) -> dict[str, Any]:

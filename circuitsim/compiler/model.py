@@ -126,10 +126,12 @@ class CompiledModel:
     warnings: tuple[str, ...] = ()
     _fns: Any = field(default=None, repr=False)
     _event_fns: Any = field(default=None, repr=False)
+    _crossing_fn: Any = field(default=None, repr=False)
 
     def __getstate__(self):
         return {"netlist": self.netlist, "key": self.key, "meta": self.meta,
-                "warnings": self.warnings, "_fns": None, "_event_fns": None}
+                "warnings": self.warnings, "_fns": None, "_event_fns": None,
+                "_crossing_fn": None}
 
     def __setstate__(self, state):
         self.__dict__.update(state)
@@ -154,6 +156,9 @@ class CompiledModel:
             if self.meta.get("events"):
                 self._event_fns = module.make_events([t.__call__ for t in tables],
                                                      [t.slope for t in tables])
+            if self.meta.get("crossings"):
+                self._crossing_fn = module.make_crossings([t.__call__ for t in tables],
+                                                          [t.slope for t in tables])
         return self._fns[:5]
 
     def table_points(self) -> list[tuple[list[float], list[float], list[float]]]:
@@ -167,6 +172,12 @@ class CompiledModel:
         """(guards, jumps) of the switching events (see codegen._events), or None."""
         _ = self.fns
         return self._event_fns
+
+    @property
+    def crossing_fn(self):
+        """``crossings(t, y, yp, p)`` of the held relations (see codegen._crossings), or None."""
+        _ = self.fns
+        return self._crossing_fn
 
     @property
     def linsolver(self) -> str:
@@ -249,6 +260,8 @@ class CompiledModel:
                 if why:
                     raise ParameterError(f"{name} = {values[name]:g} [{val.unit}]: {why}",
                                          val.loc, comp.name)
+        for c in self.meta.get("crossings", ()):  # relations evaluated as written
+            values[c["name"]] = -1.0
         return values
 
     def param_vector(self, overrides: Mapping[str, float] | None = None) -> tuple[float, ...]:
@@ -292,7 +305,8 @@ def compile(net: Netlist, use_cache: bool = True) -> CompiledModel:
         cg = graph.build(net)
         dae = mna.assemble(net)
         nominal = {}
-        probe = CompiledModel(net, key, {"params": [p.name for p in dae.params]})
+        probe = CompiledModel(net, key, {"params": [p.name for p in dae.params],
+                                         "crossings": _modes(dae)})
         values = probe.param_values()
         for p in dae.params:
             nominal[p] = values[p.name]
@@ -308,13 +322,19 @@ def compile(net: Netlist, use_cache: bool = True) -> CompiledModel:
     return model
 
 
+def _modes(dae) -> list[dict]:
+    """The held relations' mode parameters, named as ``param_values`` expects them."""
+    return [{"name": c.mode.name} for c in dae.crossings]
+
+
 def derive(net: Netlist):
     """The symbolic DAE and its index-1 form (for ``circuitsim equations``/``check``)."""
     from circuitsim.compiler import graph, mna, structure
 
     cg = graph.build(net)
     dae = mna.assemble(net)
-    probe = CompiledModel(net, "", {"params": [p.name for p in dae.params]})
+    probe = CompiledModel(net, "", {"params": [p.name for p in dae.params],
+                                    "crossings": _modes(dae)})
     values = probe.param_values()
     idx1 = structure.reduce_index(dae, {p: values[p.name] for p in dae.params})
     return cg, dae, idx1

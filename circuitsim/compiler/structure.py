@@ -30,7 +30,7 @@ import networkx as nx
 import numpy as np
 import sympy as sp
 
-from circuitsim.compiler.mna import BreakSource, Dae, SwitchEvent, format_equations
+from circuitsim.compiler.mna import BreakSource, Crossing, Dae, SwitchEvent, format_equations
 from circuitsim.component import as_expr
 from circuitsim.errors import SingularCircuitError
 
@@ -61,6 +61,7 @@ class IndexOneDae:
     report: tuple[str, ...]
     integrals: Mapping[str, str]
     events: tuple[SwitchEvent, ...] = ()
+    crossings: tuple[Crossing, ...] = ()
 
     def pretty(self, latex: bool = False) -> str:
         return format_equations(self.equations, self.origins,
@@ -436,9 +437,12 @@ def reduce_index(dae: Dae, nominal: Mapping[sp.Symbol, float]) -> IndexOneDae:
     events = tuple(SwitchEvent(e.owner, e.guard.xreplace(resolve),
                                tuple((s, v.xreplace(resolve)) for s, v in e.sets))
                    for e in dae.events)
+    crossings = tuple(Crossing(c.owner, c.mode, c.distance.xreplace(resolve),
+                               c.scale.xreplace(resolve)) for c in dae.crossings)
     return IndexOneDae(dae.t, states, yp, len(diff), tuple(sys.eqs), tuple(sys.origins),
                        dae.params, resolve, exports, probes, dict(dae.initial), dae.tables,
-                       dae.breaks, dae.units, tuple(sys.report), dae.integrals, events)
+                       dae.breaks, dae.units, tuple(sys.report), dae.integrals, events,
+                       crossings)
 
 
 def _check_square(sys: _System) -> None:

@@ -50,7 +50,10 @@ def simulate_batch(model, params_list: Sequence[Mapping[str, float] | None],
     run = settings(model, stop, step, t_eval, rtol, atol, max_step, init)
     sets = [dict(q or {}) for q in params_list]
     n = len(model.state_names)
-    # a switching model restarts at its own events: its members run one by one
+    # a switching model restarts at its own events: its members run one by one. Relations
+    # of behavioural expressions are evaluated as written here (no events): a fit's
+    # finite differences need one step sequence for all members, and the stacked run is
+    # five times faster than one-by-one runs with events (EMPS fit: 46 s against 224 s)
     if len(sets) < 2 or n == 0 or model.meta.get("events"):
         return [simulate(model, run.stop, q, t_eval=run.t_eval, rtol=run.rtol, atol=run.atol,
                          max_step=run.max_step, init=run.init) for q in sets]

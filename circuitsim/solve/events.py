@@ -39,39 +39,96 @@ ROOT_RETURN = 2
 #: (1e-10) is loose when some state is large: at 600 rad/s it left a current 2.5e-8 A off,
 #: and IDA's first step then failed its error test at atol 1e-9 down to h = 1e-17.
 RESTART_TOL = 1e-12
+#: Hysteresis of a held relation, relative to |lhs| + |rhs|, and an absolute floor: at its
+#: root IDA returns a point just past the crossing, so the new mode's guard is positive by
+#: that much; the band keeps the rounding of the restart from switching it straight back.
+BAND_REL = 1e-10
+BAND_ABS = 1e-300
+#: A relation exactly on its threshold at the start takes its truth this fraction of the run
+#: later (``t > 0`` at t = 0 starts true, as its root would otherwise be missed).
+LOOKAHEAD = 1e-9
 
 
 class Switching:
     """The events of one model at one parameter vector: IDA's root functions, the jumps of
-    the discrete states and the event iteration."""
+    the discrete states, the modes of the held relations (run-time parameters, flipped at
+    their roots) and the event iteration."""
 
     def __init__(self, model, p: tuple, stop: float):
-        self.model, self.p = model, p
-        self.guards, self.jumps = model.event_fns
-        self.info = model.meta["events"]
+        self.model, self.p = model, list(p)
+        self.state_guards, self.jumps = model.event_fns or (None, None)
+        self.crossings = model.crossing_fn
+        self.info = list(model.meta.get("events", []))
+        self.modes = [c["mode"] for c in model.meta.get("crossings", [])]
+        self.n_ev = len(self.info)
+        self.info += [{"owner": c["owner"], "targets": []}
+                      for c in model.meta.get("crossings", [])]
         self.g = np.zeros(len(self.info))
         self.discrete = sorted({i for e in self.info for i in e["targets"]})
         self.recent: collections.deque = collections.deque(maxlen=ZENO_COUNT)
         self.span = ZENO_SPAN * stop
-        # every guard is a root function that matters when it falls through zero
-        self.guards.terminal = [True] * len(self.info)
-        self.guards.direction = [-1] * len(self.info)
+        self.lookahead = LOOKAHEAD * stop
+        self.guards = self._root_functions()
+
+    def _root_functions(self):
+        """IDA's root functions: the components' guards, then one per held relation (its
+        distance, signed for the mode held, plus the hysteresis band); every one matters
+        when it falls through zero."""
+        n_ev, modes = self.n_ev, np.array(self.modes, int)
+
+        def guards(t, y, yp, g, p):
+            if n_ev:
+                self.state_guards(t, y, yp, g[:n_ev], p)
+            if modes.size:
+                g[n_ev:] = self._held(t, y, yp, p, modes)
+
+        guards.terminal = [True] * len(self.info)
+        guards.direction = [-1] * len(self.info)
+        return guards
+
+    def _held(self, t, y, yp, p, modes: np.ndarray) -> np.ndarray:
+        """Guards of the held relations: positive while each holds its mode."""
+        out = self.crossings(t, y, yp, p)
+        k = modes.size
+        held = np.asarray(p, float)[modes] > 0.5
+        return np.where(held, out[:k], -out[:k]) + BAND_REL * out[k:] + BAND_ABS
+
+    def start(self, t: float, y: np.ndarray, yp: np.ndarray
+              ) -> tuple[np.ndarray, np.ndarray]:
+        """Set every held relation to its truth at t (on its threshold: a moment later, so
+        ``t > 0`` starts true), then consistent values and event iteration."""
+        if self.modes:
+            k = len(self.modes)
+            out = self.crossings(t, y, yp, tuple(self.p))
+            later = self.crossings(t + self.lookahead, y + self.lookahead * yp, yp,
+                                   tuple(self.p))
+            on = np.abs(out[:k]) <= BAND_REL * out[k:] + BAND_ABS
+            for j, m in enumerate(self.modes):
+                self.p[m] = float((later[j] if on[j] else out[j]) > 0)
+            y, yp = self.consistent(t, y, yp)
+        return self.settle(t, y, yp)
 
     def ida_options(self) -> dict:
-        return {"eventsfn": self.guards, "num_events": len(self.info)}
+        return {"eventsfn": self.guards, "num_events": len(self.info),
+                "userdata": tuple(self.p)}
 
     def owners(self, fired: np.ndarray) -> list[str]:
         return sorted({self.info[k]["owner"] for k in np.flatnonzero(fired)})
 
     def apply(self, t: float, y: np.ndarray, yp: np.ndarray, fired: np.ndarray) -> np.ndarray:
         """y with the discrete states of the fired events set (all new values computed from
-        the old states first: the events of one instant happen together)."""
-        vals = self.jumps(t, y, yp, self.p)
+        the old states first: the events of one instant happen together); the fired held
+        relations flip their modes."""
         out = np.array(y, float)
-        for k in np.flatnonzero(fired):
-            e = self.info[k]
-            for j, idx in enumerate(e["targets"]):
-                out[idx] = vals[e["start"] + j]
+        if fired[:self.n_ev].any():
+            vals = self.jumps(t, y, yp, tuple(self.p))
+            for k in np.flatnonzero(fired[:self.n_ev]):
+                e = self.info[k]
+                for j, idx in enumerate(e["targets"]):
+                    out[idx] = vals[e["start"] + j]
+        for k in np.flatnonzero(fired[self.n_ev:]):
+            m = self.modes[k]
+            self.p[m] = 1.0 - self.p[m]
         return out
 
     def settle(self, t: float, y: np.ndarray, yp: np.ndarray,
@@ -83,13 +140,13 @@ class Switching:
         who: set[str] = set()
         for _ in range(MAX_ROUNDS):
             if fired is None:
-                self.guards(t, y, yp, self.g, self.p)
+                self.guards(t, y, yp, self.g, tuple(self.p))
                 fired = self.g <= 0
             if not fired.any():
                 return y, yp
             who.update(self.owners(fired))
             y = self.apply(t, y, yp, fired)
-            key = tuple(np.round(y[self.discrete], 12))
+            key = (*np.round(y[self.discrete], 12), *(self.p[m] for m in self.modes))
             if key in seen:
                 break
             seen.add(key)
@@ -104,10 +161,10 @@ class Switching:
         """Consistent (y, y') at t to RESTART_TOL, or to consistent_initial's own tolerance
         where rounding stops Newton short of it."""
         try:
-            return consistent_initial(self.model, t, y, self.p, yp_guess=yp,
+            return consistent_initial(self.model, t, y, tuple(self.p), yp_guess=yp,
                                       tol=RESTART_TOL, max_iter=12)
         except SolverError:
-            return consistent_initial(self.model, t, y, self.p, yp_guess=yp)
+            return consistent_initial(self.model, t, y, tuple(self.p), yp_guess=yp)
 
     def restart(self, t: float, y: np.ndarray, yp: np.ndarray
                 ) -> tuple[np.ndarray, np.ndarray]:
@@ -117,18 +174,27 @@ class Switching:
 
     def note(self, t: float, fired: np.ndarray) -> str | None:
         """Record a root; a message if the roots pile up with no time between them."""
-        self.recent.append((t, tuple(self.owners(fired))))
+        self.recent.append((t, tuple(self.owners(fired)), bool(fired[self.n_ev:].any())))
         if len(self.recent) == ZENO_COUNT and t - self.recent[0][0] <= self.span:
-            who = sorted({o for _, names in self.recent for o in names})
+            who = sorted({o for _, names, _ in self.recent for o in names})
+            fix = ("give the switch a hysteresis (Vh) or a control that does not sit on its "
+                   "threshold")
+            if any(rel for *_, rel in self.recent):
+                fix = (f"{fix}; a relation in an expression (if, sign, abs, min, max) that "
+                       f"switches back at once has no consistent side there (sign(w) "
+                       f"friction at rest is one): write it with smooth_sign or smooth_abs, "
+                       f"or use a stick-slip element (stick_clutch)")
             return (f"at t = {t:.9g} s {', '.join(who)} switched {ZENO_COUNT} times within "
-                    f"{t - self.recent[0][0]:.3g} s (chatter): give the switch a hysteresis "
-                    f"(Vh) or a control that does not sit on its threshold")
+                    f"{t - self.recent[0][0]:.3g} s (chatter): {fix}")
         return None
 
 
 def for_model(model, p: tuple, stop: float) -> Switching | None:
-    """The model's switching at parameters p, or None when it has no events."""
-    return Switching(model, p, stop) if model.meta.get("events") else None
+    """The model's switching at parameters p, or None when it has no events and no held
+    relations."""
+    if model.meta.get("events") or model.meta.get("crossings"):
+        return Switching(model, p, stop)
+    return None
 
 
 def refuse(model, what: str) -> None:
@@ -140,7 +206,7 @@ def refuse(model, what: str) -> None:
                           f"(model: smooth, pwm_leg)")
 
 
-def _ida(residual, opts: dict):
+def plain_ida(residual, opts: dict):
     """scikit-sundae's IDA (the lean import); root functions have no compiled route, so the
     compiled kernels a fit or a sweep asks for are not offered here."""
     from circuitsim.solve.sundae import ida_class
@@ -151,7 +217,7 @@ def _ida(residual, opts: dict):
         return ida_class()(residual, **opts)
 
 
-def _targets(t_eval: np.ndarray, a: float, b: float, eps: float):
+def output_targets(t_eval: np.ndarray, a: float, b: float, eps: float):
     """Output times of (a, b]: the times to stop at, whether each is wanted, their labels
     (one within eps of the corner b is reported as the state at b)."""
     mine = t_eval[(t_eval > a + eps) & (t_eval <= b + eps)]
@@ -167,13 +233,13 @@ def segment(system, run, a: float, b: float, eps: float, state, record, chunk: i
     """Integrate over (a, b] as integrate's segments do, stopping at every root of a guard
     to switch and restart; None, or why it failed."""
     sw: Switching = system.switching
-    targets, wanted, labels = _targets(run.t_eval, a, b, eps)
-    opts = {**system.opts, **sw.ida_options()}
+    targets, wanted, labels = output_targets(run.t_eval, a, b, eps)
     lo = 0
     while lo < targets.size:
         part = targets[lo:lo + chunk]
+        opts = {**system.opts, **sw.ida_options()}  # the modes held since the last switch
         try:
-            sol = _ida(system.residual, opts).solve(np.concatenate([[state.t], part]),
+            sol = plain_ida(system.residual, opts).solve(np.concatenate([[state.t], part]),
                                                     state.y, state.yp)
         except Exception as exc:  # noqa: BLE001 - the wrapper raises assorted types
             return (f"at t = {state.t:.6g} s the integrator stopped ({exc!r}); try "
@@ -191,9 +257,10 @@ def segment(system, run, a: float, b: float, eps: float, state, record, chunk: i
             record(labels[lo:lo + done][w], got_y[1:done + 1][w], got_yp[1:done + 1][w])
         lo += done
         if root:
-            why = _switch(sw, sol, got_t[-1], got_y[-1], got_yp[-1], state)
+            why = switch_at(sw, sol, got_t[-1], got_y[-1], got_yp[-1], state)
             if why:
                 return why
+            record.note_event(state.t)
             while lo < targets.size and targets[lo] <= state.t + eps:  # outputs at the
                 if wanted[lo]:                                        # switching instant
                     record(labels[lo:lo + 1], state.y[None, :], state.yp[None, :])
@@ -205,7 +272,7 @@ def segment(system, run, a: float, b: float, eps: float, state, record, chunk: i
     return None
 
 
-def _switch(sw: Switching, sol, t: float, y: np.ndarray, yp: np.ndarray, state
+def switch_at(sw: Switching, sol, t: float, y: np.ndarray, yp: np.ndarray, state
             ) -> str | None:
     """Apply the events IDA found at t and settle; the state moves to t."""
     fired = np.asarray(sol.i_events)[-1] != 0

@@ -127,7 +127,7 @@ def simulate(model, stop: float | None = None, params: Mapping[str, float] | Non
                                             start, rec, chunk)
     t_all, y_all, yp_all = rec.arrays(n)
     return _finite(SimResult(t_all, y_all, yp_all, model.state_names, status, detail, nfev,
-                             njev, model, p))
+                             njev, model, p, np.array(rec.event_times)))
 
 
 def consistent_start(model, run: Settings, params: Mapping[str, float] | None, p: tuple
@@ -179,6 +179,11 @@ class Recorder:
         self.ts: list[np.ndarray] = []
         self.ys: list[np.ndarray] = []
         self.yps: list[np.ndarray] = []
+        self.event_times: list[float] = []
+
+    def note_event(self, t: float) -> None:
+        """An instant [s] at which events switched something."""
+        self.event_times.append(t)
 
     def __call__(self, times: np.ndarray, yy: np.ndarray, yyp: np.ndarray) -> None:
         idx = self.counter + np.arange(times.size)
@@ -207,6 +212,7 @@ class System:
     restart: object  # (t, y, y') -> consistent (y, y') at t
     names: tuple[str, ...]
     switching: events.Switching | None = None  # discrete states changed at roots
+    rows: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(0))  # [s] stops
 
 
 def model_system(model, run: Settings, p: tuple) -> System:
@@ -223,7 +229,25 @@ def model_system(model, run: Settings, p: tuple) -> System:
             return switching.restart(t, y, yp)
         return consistent_initial(model, t, y, p, yp_guess=yp)
 
-    return System(model.fns[0], opts, restart, model.state_names, switching)
+    return System(model.fns[0], opts, restart, model.state_names, switching,
+                  table_rows(model, run.stop))
+
+
+def table_rows(model, stop: float) -> np.ndarray:
+    """Times [s] inside (0, stop) where a table source's interpolant changes slope: its
+    rows (and its ends, where it starts to hold), except where the slope is the same on both
+    sides. IDA stops exactly at each (SPICE stops at every PWL point) without a restart."""
+    out = []
+    for comp in model.netlist.components:
+        for table in comp.tables:
+            x, y = np.asarray(table.x, float), np.asarray(table.y, float)
+            slopes = np.concatenate([[0.0], np.diff(y) / np.diff(x), [0.0]])
+            kink = np.abs(np.diff(slopes)) > 1e-12 * (np.abs(slopes[1:]) + np.abs(slopes[:-1]))
+            out.append(x[kink])
+    if not out:
+        return np.zeros(0)
+    rows = np.unique(np.concatenate(out))
+    return rows[(rows > 0.0) & (rows < stop)]
 
 
 def _integrate(model, run: Settings, p: tuple, edges: list[float],
@@ -240,10 +264,11 @@ def integrate_system(system: System, run: Settings, edges: list[float],
     y, yp = start
     if system.switching is not None:  # the modes at t = 0 follow the initial values
         try:
-            y, yp = system.switching.settle(0.0, y, yp)
+            y, yp = system.switching.start(0.0, y, yp)
         except SolverError as exc:
             return Status.SOLVER_FAILED, exc.bare, 0, 0
-    step = events.segment if system.switching is not None else _segment
+    step = _stepped if system.rows.size else \
+        events.segment if system.switching is not None else _segment
     first = run.t_eval[run.t_eval <= eps]
     if first.size:
         record(first[:1], y[None, :], yp[None, :])
@@ -307,6 +332,79 @@ def _segment(system: System, run: Settings, a: float, b: float, eps: float,
             return _failure(system.names, sol, t_fail, run.rtol, run.atol)
         state.y, state.yp, state.t = got_y[-1], got_yp[-1], float(got_t[-1])
     return None
+
+
+def _stop_plan(system: System, run: Settings, a: float, b: float, eps: float):
+    """The outputs of (a, b] (times, wanted, labels), every time to step to (outputs, then
+    rows that are no output) and the stop times (rows, then b)."""
+    targets, wanted, labels = events.output_targets(run.t_eval, a, b, eps)
+    rows = system.rows[(system.rows > a + eps) & (system.rows < b - eps)]
+    near = np.searchsorted(targets, rows)  # a row on an output time is stopped at as such
+    close = np.minimum(np.abs(targets[np.minimum(near, targets.size - 1)] - rows),
+                       np.abs(targets[np.maximum(near - 1, 0)] - rows)) <= eps
+    times = np.concatenate([targets, rows[~close]])
+    return targets, wanted, labels, times, np.append(rows, b)  # rows are sorted
+
+
+def _stepped(system: System, run: Settings, a: float, b: float, eps: float,
+             state: _Segment, record: Recorder, chunk: int) -> str | None:
+    """(a, b] with IDA's stop time on each table row in turn: it never steps across a row
+    and is not restarted there (a restart per row would cost a new start for each of a long
+    record's rows); outputs between rows are interpolated as in ``_segment``. A root of a
+    switching guard switches (events.switch_at) and restarts IDA there."""
+    targets, wanted, labels, times, stops = _stop_plan(system, run, a, b, eps)
+    order = np.argsort(times, kind="stable")
+    ida, sol = _stepper(system, state), None
+    kept: list[tuple[float, np.ndarray, np.ndarray]] = []
+    i = 0
+    while i < order.size:
+        k, tout = order[i], float(times[order[i]])
+        if tout > state.t + eps:
+            sol = ida.step(tout, tstop=float(stops[np.searchsorted(stops, tout - eps)]))
+            if sol.status == events.ROOT_RETURN:
+                _count(state, sol)
+                why = events.switch_at(system.switching, sol, sol.t, sol.y, sol.yp, state)
+                if why:
+                    return why
+                record.note_event(state.t)
+                ida, sol = _stepper(system, state), None
+                continue
+            if not sol.success:
+                return _failure(system.names, _Last(sol), float(sol.t), run.rtol, run.atol)
+            state.t, state.y, state.yp = tout, np.asarray(sol.y), np.asarray(sol.yp)
+        if k < targets.size and wanted[k]:
+            kept.append((labels[k], state.y, state.yp))
+        if len(kept) >= chunk or (kept and i == order.size - 1):
+            record(*(np.array([x[c] for x in kept]) for c in range(3)))
+            kept = []
+        i += 1
+    _count(state, sol)
+    return None
+
+
+def _stepper(system: System, state: _Segment):
+    """An IDA started at the state, for step-by-step calls (with the switching's root
+    functions and modes when the model switches)."""
+    opts = system.opts
+    if system.switching is not None:
+        opts = {**opts, **system.switching.ida_options()}
+    ida = events.plain_ida(system.residual, opts)
+    ida.init_step(state.t, state.y, state.yp)
+    return ida
+
+
+def _count(state: _Segment, sol) -> None:
+    """Add one IDA's residual and Jacobian calls (its counters run from its start)."""
+    if sol is not None:
+        state.nfev += int(sol.nfev or 0)
+        state.njev += int(sol.njev or 0)
+
+
+class _Last:
+    """One step's result shaped as a solve's (rows of y and y'), for ``_failure``."""
+
+    def __init__(self, sol):
+        self.y, self.yp, self.message = np.atleast_2d(sol.y), np.atleast_2d(sol.yp), sol.message
 
 
 def _finite(res: SimResult) -> SimResult:

@@ -45,6 +45,8 @@ class SimResult:
     njev: int
     model: Any = field(repr=False)
     params: tuple[float, ...] = field(repr=False, default=())
+    #: [s] the instants at which events switched something (ideal switches, held relations)
+    t_events: np.ndarray = field(repr=False, default_factory=lambda: np.zeros(0))
     _obs: dict[str, np.ndarray] | None = field(default=None, repr=False)
     _index: dict[str, int] = field(default_factory=dict, repr=False)
 
