@@ -82,6 +82,26 @@ def test_a_model_reading_a_table_runs_compiled_to_the_bit(compile_text, tmp_path
     _same(python, kernels)
 
 
+def test_table_rows_between_output_times_are_stops_compiled_to_the_bit(
+        compile_text, tmp_path, monkeypatch):
+    """Rows that fall between output times: both routes stop IDA at each (the compiled one
+    in its own loop, its stop time advanced row by row) and drop them from the outputs."""
+    (tmp_path / "in.csv").write_text(
+        "time,v\n0,0\n0.00123,2\n0.00311,2\n0.004057,-1\n0.0041,0\n")
+    model = compile_text("""
+        components:
+          - {name: V1, type: V, p: in, n: gnd, V: {table: {file: in.csv, column: v}}}
+          - {name: R1, type: R, p: in, n: out, R: 1k}
+          - {name: C1, type: C, p: out, n: gnd, C: 1u}
+        probes: {vout: out.v}
+        analysis: {stop: 5 ms, step: 100 us}
+    """)
+    python, kernels = _both(model, monkeypatch)
+    assert _ran_direct(model)
+    _same(python, kernels)
+    assert kernels.t.size == 51
+
+
 def test_a_small_pwl_table_runs_compiled(compile_text, tmp_path, monkeypatch):
     """Points written in the netlist or a short CSV become a Piecewise of parameters."""
     (tmp_path / "pts.csv").write_text("time,v\n0,0\n0.001,2\n0.003,2\n0.004,-1\n")

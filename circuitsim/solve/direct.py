@@ -209,22 +209,37 @@ class DirectIDA:
         data = [float(len(self.members))] + [v for q in self.members for v in q]
         return np.array(data, dtype=float), m.residual_batch, m.jacobian_band
 
-    @staticmethod
-    def _run(lib, h: dict, tspan: np.ndarray) -> Result:
+    def _run(self, lib, h: dict, tspan: np.ndarray) -> Result:
         from circuitsim.solve.sundae import ida_messages
 
         ida, n = lib["ida"], h["n"]
-        out_y, out_yp = np.empty((tspan.size, n)), np.empty((tspan.size, n))
-        out_t = np.empty(tspan.size)
-        out_t[0], out_y[0], out_yp[0] = tspan[0], h["Y"], h["YP"]
-        ida.IDASetStopTime(h["mem"], float(tspan[-1]))
-        # the loop over the output times is compiled too (2 µs an output time in Python)
-        k, flag = h["module"].outputs(h["mem"].value, h["yy"], h["yp"], tspan, h["Y"],
-                                      h["YP"], out_t, out_y, out_yp)
+        # a table's rows inside the span are stops (``opts["stops"]``, integrate.table_rows):
+        # IDA is stopped exactly at each and goes on without a restart, as the Python route's
+        # step loop does; they are stepped to like output times and dropped after
+        rows = np.asarray(self.opts.get("stops", ()), dtype=float)
+        rows = rows[(rows > tspan[0]) & (rows < tspan[-1])]
+        times = np.union1d(tspan[1:], rows)
+        times = np.concatenate([tspan[:1], times])
+        ends = np.append(np.searchsorted(times, rows), times.size - 1)
+        out_y, out_yp = np.empty((times.size, n)), np.empty((times.size, n))
+        out_t = np.empty(times.size)
+        out_t[0], out_y[0], out_yp[0] = times[0], h["Y"], h["YP"]
+        done, flag = 1, 0
+        for end in ends:
+            ida.IDASetStopTime(h["mem"], float(times[end]))
+            # the loop over the output times is compiled too (2 µs an output time in Python)
+            k, flag = h["module"].outputs(
+                h["mem"].value, h["yy"], h["yp"], times[done - 1:end + 1], h["Y"], h["YP"],
+                out_t[done - 1:], out_y[done - 1:], out_yp[done - 1:])
+            done += k - 1
+            if flag < 0:
+                break
+        keep = np.isin(out_t[:done], tspan)
+        keep[0] = True
         counts = [ctypes.c_long(), ctypes.c_long()]
         ida.IDAGetNumResEvals(h["mem"], ctypes.byref(counts[0]))
         ida.IDAGetNumJacEvals(h["mem"], ctypes.byref(counts[1]))
-        return Result(out_t[:k], out_y[:k], out_yp[:k], flag >= 0,
+        return Result(out_t[:done][keep], out_y[:done][keep], out_yp[:done][keep], flag >= 0,
                       ida_messages().get(flag, f"IDA flag {flag}"), counts[0].value,
                       counts[1].value)
 

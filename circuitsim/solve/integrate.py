@@ -49,7 +49,8 @@ def make_ida(residual, opts: dict):
         direct = ida_for(opts)
         if direct is not None:
             return direct
-        opts = {k: v for k, v in opts.items() if k != "kernels_of"}
+        # never reached with stops: integrate takes its own step loop for them then
+        opts = {k: v for k, v in opts.items() if k not in ("kernels_of", "stops")}
     with warnings.catch_warnings():
         warnings.filterwarnings("ignore", message="Custom sparse Jacobian approximation")
         return ida_class()(residual, **opts)
@@ -267,8 +268,8 @@ def integrate_system(system: System, run: Settings, edges: list[float],
             y, yp = system.switching.start(0.0, y, yp)
         except SolverError as exc:
             return Status.SOLVER_FAILED, exc.bare, 0, 0
-    step = _stepped if system.rows.size else \
-        events.segment if system.switching is not None else _segment
+    step = (_stepped if system.switching is not None or not _direct(system) else _segment) \
+        if system.rows.size else events.segment if system.switching is not None else _segment
     first = run.t_eval[run.t_eval <= eps]
     if first.size:
         record(first[:1], y[None, :], yp[None, :])
@@ -309,8 +310,9 @@ def _segment(system: System, run: Settings, a: float, b: float, eps: float,
     labels = np.append(inner, mine[-1] if mine.size > inner.size else b)
     for lo in range(0, targets.size, chunk):
         part = targets[lo:lo + chunk]
+        opts = {**system.opts, "stops": system.rows} if system.rows.size else system.opts
         try:
-            sol = make_ida(system.residual, system.opts).solve(
+            sol = make_ida(system.residual, opts).solve(
                 np.concatenate([[state.t], part]), state.y, state.yp)
         except Exception as exc:  # noqa: BLE001 - the wrapper raises assorted types
             return (f"at t = {state.t:.6g} s the integrator stopped ({exc!r}); try "
@@ -332,6 +334,16 @@ def _segment(system: System, run: Settings, a: float, b: float, eps: float,
             return _failure(system.names, sol, t_fail, run.rtol, run.atol)
         state.y, state.yp, state.t = got_y[-1], got_yp[-1], float(got_t[-1])
     return None
+
+
+def _direct(system: System) -> bool:
+    """Whether IDA runs on the model's compiled kernels (they stop at a table's rows in one
+    compiled loop: ``_segment`` then serves, with the rows as stops)."""
+    if "kernels_of" not in system.opts:
+        return False
+    from circuitsim.solve.direct import ida_for
+
+    return ida_for(system.opts) is not None
 
 
 def _stop_plan(system: System, run: Settings, a: float, b: float, eps: float):
