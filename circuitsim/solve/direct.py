@@ -321,14 +321,25 @@ def _table_data(model, p) -> np.ndarray:
     """The user data of kernels that read run-time tables: the parameters (at least one
     entry), the data's length, each table's start and number of points, then per table its
     x, its y and its slopes, the very numbers the Python route's tables interpolate with."""
-    tables = model.table_points()
-    head = [float(v) for v in p] or [0.0]
-    start = len(head) + 1 + 2 * len(tables)
-    index, points = [], []
-    for x, y, slopes in tables:
-        index += [start + len(points), len(x)]
-        points += [*x, *y, *slopes]
-    return np.array([*head, start + len(points), *index, *points], dtype=float)
+    # the model itself, not its key: a key names a topology, and two netlists of one topology
+    # may read different tables (the entry holds the model, so its id is not reused)
+    key = (id(model), tuple(float(v) for v in p))
+    if _TABLE_DATA.get("key") != key or _TABLE_DATA.get("model") is not model:
+        tables = model.table_points()
+        head = np.asarray(key[1] or (0.0,), dtype=float)
+        start = head.size + 1 + 2 * len(tables)
+        index, pieces, at = [], [], start
+        for x, y, slopes in tables:
+            index += [at, len(x)]
+            pieces += [np.asarray(v, dtype=float) for v in (x, y, slopes)]
+            at += 3 * len(x)
+        _TABLE_DATA.update(key=key, model=model, data=np.concatenate(
+            [head, np.array([at, *index], dtype=float), *pieces]))
+    return _TABLE_DATA["data"]
+
+
+#: the last model's table data, by model and parameters (one run asks per segment: built once)
+_TABLE_DATA: dict[str, Any] = {}
 
 
 def _check_sparse_layout() -> None:
