@@ -34,6 +34,10 @@ MOTORS = {
     "b": {"netlist": NETLISTS.parent / "benchmarks" / "diagnosis" / "netlists" / "motor_b.yaml",
           "stop": 5.0, "rate": 1e3, "noise": {"speed": 0.1, "current": 3e-3},
           "lsb": {"speed": 0.02, "current": 1e-3}},
+    # a motor driving a load through a flexible coupling on a 10 Hz sine: the torque through
+    # the coupling reverses, where a play shows; only the motor side is measured
+    "tm": {"netlist": NETLISTS / "examples" / "two_mass_motor.yaml", "stop": 0.2,
+           "rate": 10e3, "noise": {"speed": 0.1, "i": 2e-3}, "lsb": {"speed": 0.05, "i": 1e-3}},
 }
 
 
@@ -192,3 +196,22 @@ def test_saturation_and_friction_together_on_the_dc_motor():
     found = {a.effect for a in d.effects}
     assert "inductor-saturation" in found, d.summary()
     assert found & {"coulomb-friction", "force-offset"}, d.summary()
+
+
+def test_backlash_in_the_coupling_through_the_loop():
+    rec = make_record("tm", [("backlash", "K", None, [0.01])], seed=5)
+    d = diagnose(cs.load(MOTORS["tm"]["netlist"]), rec)
+    _check(d, "backlash", "K", None, [0.01], 0.05)
+    assert d.error_after < 0.2 * d.error_before
+
+
+def test_backlash_and_load_friction_together_on_the_two_mass_drive():
+    rec = make_record("tm", [("backlash", "K", None, [0.005]),
+                             ("coulomb-friction", "load", None, [2e-3])], seed=7)
+    d = diagnose(cs.load(MOTORS["tm"]["netlist"]), rec)
+    got = {a.effect: a for a in d.effects}
+    assert set(got) == {"backlash", "coulomb-friction"}, d.summary()
+    assert got["coulomb-friction"].target == "load"
+    final = {k: v["estimate"] for k, v in d.final_parameters().items()}
+    assert final["backlash_K_gap"] == pytest.approx(0.005, rel=0.05)
+    assert final["coulomb_friction_load_c"] == pytest.approx(2e-3, rel=0.05)

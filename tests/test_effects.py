@@ -16,6 +16,7 @@ from circuitsim.solve.op import operating_point, probe_values
 from conftest import NETLISTS
 
 CASE1 = NETLISTS / "kim2024" / "case1.yaml"
+TWO_MASS = NETLISTS / "examples" / "two_mass_motor.yaml"
 
 
 def _compile(net):
@@ -30,6 +31,8 @@ def test_catalog_covers_the_interface_ids():
     # a breakaway peak refines a friction the netlist has: proposed once there is one
     coulomb = next(c for c in effects.candidates(net) if c.effect == "coulomb-friction")
     found |= {c.effect for c in effects.candidates(build(coulomb.apply(net.raw)))}
+    # a play needs a declared coupling between two bodies
+    found |= {c.effect for c in effects.candidates(cs.load(TWO_MASS))}
     assert found == set(effects.CATALOG_IDS)
 
 
@@ -144,10 +147,13 @@ def test_stribeck_patch_is_coulomb_friction_far_above_its_speed():
 def test_effect_parameters_have_physical_bounds():
     """Resistances, friction and drops are never negative; a saturation ratio is in (0, 1]."""
     net = cs.load(CASE1)
-    for c in effects.candidates(net, {"rotor": [8]}, ["i_total"]):
+    cands = [*effects.candidates(net, {"rotor": [8]}, ["i_total"]),
+             *effects.candidates(cs.load(TWO_MASS))]
+    for c in cands:
         for name, (null, lo, hi) in c.free.items():
             assert lo <= null <= hi, c.key
             if c.effect in ("series-resistance", "source-resistance", "brush-drop",
+                            "backlash",
                             "coulomb-friction", "viscous-friction", "stribeck-friction"):
                 assert lo == 0.0, c.key
             if c.effect == "inductor-saturation" and name.endswith("ratio"):
@@ -176,3 +182,41 @@ def test_warmup_patch_is_the_closed_form_and_exact_at_null(tmp_path):
     assert res["i"] == pytest.approx(1 / (2 * (1 + 0.3 * (1 - np.exp(-t / 0.1)))), rel=1e-8)
     null = model.simulate(stop=0.5, t_eval=t, rtol=1e-10, atol=1e-14)  # rise at its null
     assert np.all(null["i"] == 0.5)
+
+
+def test_backlash_patch_is_the_dead_zone_closed_form_and_exact_at_null(tmp_path):
+    """A torque step T on a rotor J1 coupled to a load J2 through a coupling with a play of
+    total width g: inside the play nothing is transmitted, neither spring nor damper, so the
+    rotor turns at T t / J1 and the load stays at rest until the twist T t^2 / (2 J1) reaches
+    g / 2, at t_c = sqrt(g J1 / T) (an event); the netlist's step rises over 1 ns, which
+    delays both by half of that. At g = 0 it is the declared coupling."""
+    net = cs.load(NETLISTS / "breadth" / "drivetrain.yaml")
+    cand = next(c for c in effects.candidates(net) if c.effect == "backlash")
+    assert cand.target == "Coupling"
+    (gap,) = cand.free
+    model = _compile(build(cand.apply(net.raw)))
+    j1, torque, g, lag = 0.01, 1.0, 0.02, 0.5e-9
+    t_c = np.sqrt(g * j1 / torque) + lag
+    t = np.linspace(0.0, 0.9 * t_c, 31)
+    res = model.simulate(stop=2 * t_c, t_eval=np.append(t, 2 * t_c), params={gap: g},
+                         rtol=1e-10, atol=1e-12)
+    w = torque * np.maximum(t - lag, 0.0) / j1
+    assert res["w_rotor"][:-1] == pytest.approx(w, rel=1e-8, abs=1e-9)
+    assert np.all(np.abs(res["w_load"][:-1]) < 1e-9)
+    assert res["w_load"][-1] > 1e-3  # in contact after t_c: the load follows
+    assert min(abs(np.asarray(res.t_events) - t_c)) < 1e-8 * t_c + 1e-12
+    t = np.linspace(0.0, 0.2, 201)
+    base = _compile(net).simulate(stop=0.2, t_eval=t, rtol=1e-10, atol=1e-12)
+    null = model.simulate(stop=0.2, t_eval=t, rtol=1e-10, atol=1e-12)
+    np.testing.assert_allclose(null["twist"], base["twist"], rtol=1e-6, atol=1e-9)
+
+
+def test_a_coupling_reads_no_shaft_angle_but_a_ripple_does():
+    """Speed effects are compared on the waveform unless a law reads a shaft's angle itself:
+    a spring reads the twist between two shafts (turning both alike changes nothing), a
+    declared EMF ripple reads the angle."""
+    from circuitsim.loop.diagnose.context import angle_locked
+
+    assert not angle_locked(_compile(cs.load(TWO_MASS)))
+    assert not angle_locked(_compile(cs.load(NETLISTS / "breadth" / "drivetrain.yaml")))
+    assert angle_locked(_compile(cs.load(NETLISTS / "kim2024" / "base.yaml")))

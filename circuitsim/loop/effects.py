@@ -22,7 +22,7 @@ from circuitsim.netlist.load import Netlist, RawNetlist
 CATALOG_IDS = ("series-resistance", "source-resistance", "brush-drop", "coulomb-friction",
                "stribeck-friction", "viscous-friction", "cogging", "unbalance", "emf-harmonic",
                "inductor-saturation", "resistance-drift", "force-offset", "sensor-gain",
-               "sensor-offset", "sensor-delay")
+               "sensor-offset", "sensor-delay", "backlash")
 
 
 @dataclass(frozen=True)
@@ -155,7 +155,7 @@ def candidates(net: Netlist, orders: Mapping[str, list[int]] | None = None,
     length [s] (a warm-up's time constant starts from it; without it, no warm-up)."""
     orders = orders or {}
     return [*_electrical(net), *_converter_effects(net, orders), *_mechanical(net, orders),
-            *_component_laws(net, duration), *_sensors(probes)]
+            *_component_laws(net, duration), *_couplings(net), *_sensors(probes)]
 
 
 def _electrical(net: Netlist) -> list[Candidate]:
@@ -303,6 +303,62 @@ def _component_laws(net: Netlist, duration: float | None = None) -> list[Candida
             if duration:
                 out.extend(_warmup(c.name, duration))
     return out
+
+
+#: declared shaft couplings a play may open in: a spring, with or without its damper
+COUPLINGS = ("spring", "rotational_spring", "spring_damper")
+#: [rad] the largest play a coupling is given: half a turn is a loose part, not a play
+GAP_MAX = 3.14
+
+
+def _couplings(net: Netlist) -> list[Candidate]:
+    """A play (backlash) opening in a declared torsional coupling between two bodies."""
+    out = []
+    for c in _declared(net):
+        if c.type not in COUPLINGS:
+            continue
+        g = _pname("backlash", c.name, "gap")
+        out.append(Candidate(
+            "backlash", c.name, {g: (0.0, 0.0, GAP_MAX)}, {},
+            f"a play (backlash) of total width gap in the coupling {c.name}: no torque "
+            f"while the twist is within gap/2",
+            lambda r, n=c.name, g=g: _backlash(r, n, g), steps={g: 1e-3}))
+    return out
+
+
+def _backlash(raw: RawNetlist, name: str, gap: str) -> None:
+    """Give coupling ``name`` a dead zone of total width ``gap`` [rad] (as Modelica's
+    ElastoBacklash, without its rule that the damper never pulls the sides together).
+
+    The coupling stays as declared and a pair of opposite torques on its two shafts takes
+    back what it would transmit inside the play: its spring's torque c clamp(twist, -gap/2,
+    gap/2) always, its damper's d w_rel while inside. Both are exactly zero at gap = 0, so
+    the null is the declared netlist, and a user's c, d and unstretched twist are read
+    wherever they are written."""
+    e = raw.component_entry(name)
+    a, b = str(e["a"]), str(e["b"])
+    c, d, rel0 = (_as_param(raw, e.get(k), f"{gap}_{k}") for k in ("c", "d", "phi_rel0"))
+    twist = f"({a}.phi - {b}.phi" + (f" - {rel0})" if rel0 else ")")
+    half = f"{gap}/2*1[rad]"
+    law = f"{c}*clamp({twist}, -{half}, {half})"
+    if d:
+        law += f" + if(abs({twist}) < {half}, {d}*({a}.w - {b}.w), 0[N*m])"
+    _add(raw, {"name": f"BLA_{name}", "type": "btorque", "shaft": a, "expr": law})
+    _add(raw, {"name": f"BLB_{name}", "type": "btorque", "shaft": b, "expr": f"-({law})"})
+
+
+def _as_param(raw: RawNetlist, value: Any, pname: str) -> str | None:
+    """A component's value as a parameter an expression can read: a name the netlist
+    defines as it is; anything else (a number, a value with its unit) under a parameter
+    of its own, so it keeps its unit and its dimension check. None when absent."""
+    if value is None:
+        return None
+    text = str(value).strip()
+    if text in raw.params:
+        return text
+    raw.params[pname] = (repr(float(value)) if isinstance(value, (int, float)) else text,
+                         SourceLoc(raw.path or "<patch>"))
+    return pname
 
 
 def _sensors(probes: Sequence[str] | Mapping[str, str]) -> list[Candidate]:

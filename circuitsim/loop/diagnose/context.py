@@ -150,12 +150,38 @@ def angle_locked(model) -> bool:
     """Whether the model's laws read a shaft angle (a declared ripple, cogging): then a change
     of speed slides that ripple out of phase, and speed effects are compared on slow features
     rather than on the waveform. A shaft whose angle only integrates its speed holds no such
-    phase, and the waveform, with every sample, is the sharper view."""
+    phase, and neither does a coupling that reads only the twist between two shafts (a
+    spring): the waveform, with every sample, is then the sharper view."""
     meta = model.meta
     angles = [s for s, d in meta.get("integrals", {}).items() if d == "rotational"]
     states, pattern = meta.get("states"), meta.get("fy_pattern")
     if not angles or states is None or pattern is None:
         return bool(angles)  # no pattern to tell by: assume the ripple is there
-    cols = {states.index(a) for a in angles if a in states}
+    cols = [states.index(a) for a in angles if a in states]
     # an angle's own row (phi' = w) has no entry in dF/dphi: any entry is a law of the angle
-    return any(int(c) in cols for c in pattern[1])
+    if not any(int(c) in set(cols) for c in pattern[1]):
+        return False
+    return not _twist_only(model, cols)
+
+
+def _twist_only(model, cols: Sequence[int]) -> bool:
+    """Whether the residual is unchanged when every shaft turns by the same angle, at a few
+    arbitrary states: its laws then read differences of angles only. A ripple reads the
+    angle itself and changes; a gear (the shafts turn by different angles) counts as a
+    ripple here, the cautious side."""
+    residual = model.fns[0]
+    p = model.param_vector()
+    n = len(model.meta["states"])
+    rng = np.random.default_rng(0)
+    for _ in range(3):
+        y, yp = rng.uniform(0.1, 1.0, n), rng.uniform(-1.0, 1.0, n)
+        shifted = y.copy()
+        shifted[list(cols)] += 0.7318  # no simple fraction of a turn: no order repeats
+        r0, r1 = np.zeros(n), np.zeros(n)
+        with np.errstate(all="ignore"):
+            residual(0.0, y, yp, r0, p)
+            residual(0.0, shifted, yp, r1, p)
+        scale = np.abs(r0) + 1.0
+        if not (np.all(np.isfinite(r0)) and np.all(np.abs(r1 - r0) <= 1e-9 * scale)):
+            return False
+    return True
