@@ -271,7 +271,8 @@ class Clutch(TwoFlange):
 class Backlash(TwoFlange):
     """Spring-damper with a gap (Modelica's ElastoBacklash): no torque while |phi_rel| <
     gap/2, tau = c (phi_rel -+ gap/2) + d w_rel in contact (the damping never pulls the
-    sides together).
+    sides together). A gap of at most GAP_EPS is the plain spring-damper, as in Modelica:
+    with no play there are no sides to part.
 
     Parameters
     ----------
@@ -280,6 +281,7 @@ class Backlash(TwoFlange):
     d : [N*m*s/rad] contact damping, default 0
     """
 
+    GAP_EPS = 1e-10  # [rad] Modelica's bEps
     branches = (Branch("a", "b", "L"),)
     gap = Param("rad", "total play", nonnegative=True)
     c = Param("N*m/rad", "contact stiffness", positive=True)
@@ -291,6 +293,8 @@ class Backlash(TwoFlange):
         push = sp.Piecewise((self.c * (x.phi_rel - h) + self.d * x.w_rel, x.phi_rel > h),
                             (self.c * (x.phi_rel + h) + self.d * x.w_rel, x.phi_rel < -h),
                             (0, True))
-        # in contact the damper may slow the approach but never glue the sides
-        tau = sp.Piecewise((sp.Max(push, 0), x.phi_rel > h), (sp.Min(push, 0), True))
+        # in contact the damper may slow the approach but never glue the sides; a relation
+        # of parameters alone is evaluated as written (no event)
+        tau = sp.Piecewise((self.c * x.phi_rel + self.d * x.w_rel, self.gap <= self.GAP_EPS),
+                           (sp.Max(push, 0), x.phi_rel > h), (sp.Min(push, 0), True))
         return [x.tau - tau]

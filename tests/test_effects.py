@@ -188,11 +188,13 @@ def test_backlash_patch_is_the_dead_zone_closed_form_and_exact_at_null(tmp_path)
     """A torque step T on a rotor J1 coupled to a load J2 through a coupling with a play of
     total width g: inside the play nothing is transmitted, neither spring nor damper, so the
     rotor turns at T t / J1 and the load stays at rest until the twist T t^2 / (2 J1) reaches
-    g / 2, at t_c = sqrt(g J1 / T) (an event); the netlist's step rises over 1 ns, which
+    g / 2, at t_c = sqrt(g J1 / T); the netlist's step rises over 1 ns, which
     delays both by half of that. At g = 0 it is the declared coupling."""
     net = cs.load(NETLISTS / "breadth" / "drivetrain.yaml")
     cand = next(c for c in effects.candidates(net) if c.effect == "backlash")
     assert cand.target == "Coupling"
+    patched = cand.apply(net.raw)
+    assert patched.component_entry("Coupling")["type"] == "backlash"  # a readable netlist
     (gap,) = cand.free
     model = _compile(build(cand.apply(net.raw)))
     j1, torque, g, lag = 0.01, 1.0, 0.02, 0.5e-9
@@ -204,7 +206,6 @@ def test_backlash_patch_is_the_dead_zone_closed_form_and_exact_at_null(tmp_path)
     assert res["w_rotor"][:-1] == pytest.approx(w, rel=1e-8, abs=1e-9)
     assert np.all(np.abs(res["w_load"][:-1]) < 1e-9)
     assert res["w_load"][-1] > 1e-3  # in contact after t_c: the load follows
-    assert min(abs(np.asarray(res.t_events) - t_c)) < 1e-8 * t_c + 1e-12
     t = np.linspace(0.0, 0.2, 201)
     base = _compile(net).simulate(stop=0.2, t_eval=t, rtol=1e-10, atol=1e-12)
     null = model.simulate(stop=0.2, t_eval=t, rtol=1e-10, atol=1e-12)

@@ -315,7 +315,7 @@ def _couplings(net: Netlist) -> list[Candidate]:
     """A play (backlash) opening in a declared torsional coupling between two bodies."""
     out = []
     for c in _declared(net):
-        if c.type not in COUPLINGS:
+        if c.type not in COUPLINGS or _prestressed(net, c.name):
             continue
         g = _pname("backlash", c.name, "gap")
         out.append(Candidate(
@@ -326,39 +326,22 @@ def _couplings(net: Netlist) -> list[Candidate]:
     return out
 
 
+def _prestressed(net: Netlist, name: str) -> bool:
+    """A coupling written with an unstretched twist: the play would open about it, which
+    the backlash element does not take; not offered."""
+    entry = net.raw.component_entry(name) if net.raw is not None else {}
+    return entry.get("phi_rel0") not in (None, 0, 0.0, "0")
+
+
 def _backlash(raw: RawNetlist, name: str, gap: str) -> None:
-    """Give coupling ``name`` a dead zone of total width ``gap`` [rad] (as Modelica's
-    ElastoBacklash, without its rule that the damper never pulls the sides together).
-
-    The coupling stays as declared and a pair of opposite torques on its two shafts takes
-    back what it would transmit inside the play: its spring's torque c clamp(twist, -gap/2,
-    gap/2) always, its damper's d w_rel while inside. Both are exactly zero at gap = 0, so
-    the null is the declared netlist, and a user's c, d and unstretched twist are read
-    wherever they are written."""
+    """Turn coupling ``name`` into a ``backlash`` of total play ``gap`` [rad] with its own
+    stiffness and damping: Modelica's ElastoBacklash (in contact c (twist -+ gap/2) +
+    d w_rel, the damper never gluing the sides; nothing inside the play), which is the
+    declared coupling exactly at gap 0."""
     e = raw.component_entry(name)
-    a, b = str(e["a"]), str(e["b"])
-    c, d, rel0 = (_as_param(raw, e.get(k), f"{gap}_{k}") for k in ("c", "d", "phi_rel0"))
-    twist = f"({a}.phi - {b}.phi" + (f" - {rel0})" if rel0 else ")")
-    half = f"{gap}/2*1[rad]"
-    law = f"{c}*clamp({twist}, -{half}, {half})"
-    if d:
-        law += f" + if(abs({twist}) < {half}, {d}*({a}.w - {b}.w), 0[N*m])"
-    _add(raw, {"name": f"BLA_{name}", "type": "btorque", "shaft": a, "expr": law})
-    _add(raw, {"name": f"BLB_{name}", "type": "btorque", "shaft": b, "expr": f"-({law})"})
-
-
-def _as_param(raw: RawNetlist, value: Any, pname: str) -> str | None:
-    """A component's value as a parameter an expression can read: a name the netlist
-    defines as it is; anything else (a number, a value with its unit) under a parameter
-    of its own, so it keeps its unit and its dimension check. None when absent."""
-    if value is None:
-        return None
-    text = str(value).strip()
-    if text in raw.params:
-        return text
-    raw.params[pname] = (repr(float(value)) if isinstance(value, (int, float)) else text,
-                         SourceLoc(raw.path or "<patch>"))
-    return pname
+    e["type"] = "backlash"
+    e["gap"] = gap
+    e.setdefault("d", 0.0)
 
 
 def _sensors(probes: Sequence[str] | Mapping[str, str]) -> list[Candidate]:
