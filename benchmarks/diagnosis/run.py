@@ -379,7 +379,8 @@ def run_one(entry: dict, timeout: float, circuitsim_dir: str | None, niceness: i
 
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--split", choices=("tune", "heldout", "fresh", "fresh2", "all"), default="tune")
+    ap.add_argument("--split", choices=("tune", "heldout", "fresh", "fresh2", "all"),
+                    default="tune")
     ap.add_argument("--only", default="", help="record ids, comma-separated")
     ap.add_argument("--timeout", type=float, default=1200.0, help="per record [s]")
     ap.add_argument("--rerun", action="store_true", help="ignore stored results")
