@@ -38,18 +38,22 @@ REGIMES = {  # sample rate [Hz], duration [s], netlist (relative to the reposito
     ("A", "fast"): (50e3, 0.4, "netlists/kim2024/base.yaml"),
     ("B", "fast"): (20e3, 0.4, "benchmarks/diagnosis/netlists/motor_b_fast.yaml"),
     ("B", "slow"): (1e3, 5.0, "benchmarks/diagnosis/netlists/motor_b.yaml"),
+    ("C", "reversing"): (10e3, 0.6, "benchmarks/diagnosis/netlists/motor_c.yaml"),
 }
 WHITE = {  # the default white noise per probe [SI]
     ("A", "fast"): {"i_total": 5e-3, "speed": 0.05},
     ("B", "fast"): {"current": 2e-3, "speed": 0.05},
     ("B", "slow"): {"current": 3e-3, "speed": 0.1},
+    ("C", "reversing"): {"current": 2e-3, "speed": 0.05, "load_speed": 0.05},
 }
 # every element of the armature loop: a series resistance anywhere in it is the same effect
-LOOP = {"A": ["Ra", "La", "Lc1", "Lc2", "M", "Vin"], "B": ["Ra", "La", "M", "Vin", "U"]}
-SOURCE = {("A", "fast"): "Vin", ("B", "fast"): "Vin", ("B", "slow"): "U"}
+LOOP = {"A": ["Ra", "La", "Lc1", "Lc2", "M", "Vin"], "B": ["Ra", "La", "M", "Vin", "U"],
+        "C": ["Ra", "La", "M", "Vin"]}
+SOURCE = {("A", "fast"): "Vin", ("B", "fast"): "Vin", ("B", "slow"): "U",
+          ("C", "reversing"): "Vin"}
 # terms the declared netlist already has: an accepted effect of this kind corrects a declared
 # term and is not a new effect (it is reported, not scored)
-DECLARED = {"A": [{"effect": "emf-harmonic", "target": "M", "order": 8}], "B": []}
+DECLARED = {"A": [{"effect": "emf-harmonic", "target": "M", "order": 8}], "B": [], "C": []}
 MARGINAL_SIGMA = 8.0
 
 
@@ -87,6 +91,23 @@ def coulomb(m, rg, fc):
         "parameters": {"T_coulomb_Nm": fc, "w_smoothing_rad_s": 0.05}, "expected": {"c": fc},
         "also_accept": [{"effect": "force-offset", "targets": ["rotor"],
                          "expected": {"F": -fc}}]}
+
+
+def coulomb_load(m, rg, fc):
+    """Coulomb friction on motor C's load node (it turns both ways: not a torque offset)."""
+    return {"Fc_load": fc, "wc_load": 0.05}, {
+        "effect": "coulomb-friction", "target": "load", "targets": ["load"],
+        "parameters": {"T_coulomb_Nm": fc, "w_smoothing_rad_s": 0.05}, "expected": {"c": fc}}
+
+
+def backlash(m, rg, gap):
+    """A play of total width ``gap`` [rad] in motor C's coupling K (the catalog's free
+    parameter backlash_K_gap)."""
+    return {"backlash": gap}, {
+        "effect": "backlash", "target": "K", "targets": ["K"],
+        "parameters": {"gap_rad": gap, "form": "0 while |phi_rel| < gap/2, else "
+                       "c (phi_rel -+ gap/2) + d w_rel, the damping never pulling"},
+        "expected": {"gap": gap}}
 
 
 def viscous(m, rg, bx):
@@ -283,7 +304,7 @@ def record_specs() -> list[dict]:
         by_class[s["class"]] = k
         s["split"] = "heldout" if k % 3 == 0 else "tune"
         s["seed"] = 1000 + S.index(s)
-    return S + fresh_specs()
+    return S + fresh_specs() + fresh2_specs()
 
 
 def fresh_specs() -> list[dict]:
@@ -320,6 +341,51 @@ def fresh_specs() -> list[dict]:
     return S
 
 
+def fresh2_specs() -> list[dict]:
+    """The blind set of motor C (a two-mass drive with a compliant coupling K, catalog entry
+    ``backlash`` added): written before the backlash entry existed and run once by someone
+    else. Probes current, speed and load_speed, except g07 (no load encoder)."""
+    C, rg = "C", "reversing"
+    S: list[dict] = []
+
+    def rec(rid, cls, build=None, amp=None, marginal=False, noise=None, probes=None, note=""):
+        S.append({"id": rid, "class": cls, "motor": C, "regime": rg,
+                  "build": build or (lambda a: ({}, [])), "amp": amp, "marginal": marginal,
+                  "iters": 5, "noise": noise, "free": [], "note": note, "split": "fresh2",
+                  "seed": 3000 + len(S), **({"probes": probes} if probes else {})})
+
+    rec("g01", "null", noise={"current": {"ar1": [2e-3, 0.9]}, "speed": {"white": 0.05},
+                              "load_speed": {"ar1": [0.05, 0.7]}},
+        note="AR(1) current (phi 0.9) and load-speed (phi 0.7) noise")
+    rec("g02", "catalog", lambda a: add(backlash(C, rg, a)), 0.02,
+        note="strong: 20 mrad (1.15 deg) of play")
+    # the clipped contact damping makes a vanishing play differ from the spring_damper
+    # (~18 sigma of speed here): g03's play is scaled so that its own imprint, beyond that
+    # limit (a play of 1e-8 rad), is MARGINAL_SIGMA
+    rec("g03", "catalog", lambda a: add(backlash(C, rg, a)), 1e-4, marginal=True,
+        note="marginal: the play's imprint beyond a vanishing play's is 8 sigma (against the "
+             "declared spring_damper it is larger: the clipped damping alone makes ~18 "
+             "sigma of speed)")
+    S[-1]["marginal_vs"] = {"backlash": 1e-8}
+    rec("g04", "catalog", lambda a: add(backlash(C, rg, a)), 0.01,
+        noise={"current": {"white": 2e-3, "quant": 5e-3},
+               "speed": {"white": 0.05, "quant": 0.1},
+               "load_speed": {"pink": 0.1, "quant": 0.1}},
+        note="10 mrad of play; ADC steps 5 mA and 0.1 rad/s, 1/f load-speed noise")
+    rec("g05", "two", lambda a: add(backlash(C, rg, 0.005), coulomb_load(C, rg, 1e-3)),
+        note="5 mrad of play and a 1 mN m Coulomb friction on the load")
+    rec("g06", "outside", lambda a: add(outside(
+        "hardening-coupling", {"hardening": 30.0},
+        {"k_hardening_per_rad2": 30.0,
+         "shape": "coupling torque c phi_rel (1 + 30 phi_rel^2) + d w_rel: +7.5 % stiffness "
+                  "at 50 mrad of twist"})),
+        note="a hardening coupling (no play)")
+    rec("g07", "catalog", lambda a: add(backlash(C, rg, a)), 0.008,
+        probes=["current", "speed"],
+        note="8 mrad of play; no load encoder: current and motor speed only")
+    return S
+
+
 # ---------------------------------------------------------------------- generation
 
 _NULL_CACHE: dict = {}
@@ -337,12 +403,17 @@ def _null(motor, regime):
     return _NULL_CACHE[key]
 
 
-def signature(motor, regime, clean) -> dict[str, float]:
+def signature(motor, regime, clean, probes=None) -> dict[str, float]:
     """||effect - null|| / white sigma, per probe: the size of the effect's imprint in noise
-    sigmas of the default white noise (a matched-filter SNR before any refit)."""
+    sigmas of the default white noise (a matched-filter SNR before any refit). ``probes``:
+    the record's probes (default: all of the motor's)."""
     null = _null(motor, regime)
     return {p: float(np.linalg.norm(clean[p] - null[p]) / s)
-            for p, s in WHITE[(motor, regime)].items()}
+            for p, s in WHITE[(motor, regime)].items() if probes is None or p in probes}
+
+
+def probes_of(spec) -> list[str]:
+    return list(spec.get("probes") or sims.PROBES[spec["motor"]])
 
 
 def build(spec) -> tuple[dict, list, dict, dict]:
@@ -351,20 +422,33 @@ def build(spec) -> tuple[dict, list, dict, dict]:
     amp = spec["amp"]
     fx, effects = spec["build"](amp)
     clean = sims.simulate(motor, regime, t, fx)
-    sig = signature(motor, regime, clean)
+    sig = signature(motor, regime, clean, probes_of(spec))
+    # a marginal record is scaled on its imprint against the null, or against ``marginal_vs``
+    # (the effect's limit at a vanishing amplitude, where that limit is not the null)
+    ref = sims.simulate(motor, regime, t, spec["marginal_vs"]) if "marginal_vs" in spec \
+        else None
+
+    def scaled_sig():
+        if ref is None:
+            return sig
+        return {p: float(np.linalg.norm(clean[p] - ref[p]) / s)
+                for p, s in WHITE[(motor, regime)].items() if p in probes_of(spec)}
     if spec["marginal"]:
-        for _ in range(2):  # scale the amplitude (the imprint is near-linear in it)
-            amp = amp * MARGINAL_SIGMA / max(sig.values())
+        for _ in range(spec.get("iters", 2)):  # scale the amplitude (near-linear imprint)
+            amp = amp * MARGINAL_SIGMA / max(scaled_sig().values())
             fx, effects = spec["build"](amp)
             clean = sims.simulate(motor, regime, t, fx)
-            sig = signature(motor, regime, clean)
+            sig = signature(motor, regime, clean, probes_of(spec))
+        if ref is not None:
+            spec["signature_beyond"] = scaled_sig()
     return fx, effects, clean, sig
 
 
 def noise_spec(spec) -> dict:
     if spec["noise"] is not None:
         return spec["noise"]
-    return {p: {"white": s} for p, s in WHITE[(spec["motor"], spec["regime"])].items()}
+    return {p: {"white": s} for p, s in WHITE[(spec["motor"], spec["regime"])].items()
+            if p in probes_of(spec)}
 
 
 def describe_noise(ns: dict) -> str:
@@ -390,18 +474,20 @@ def truth_entry(spec, effects, sig) -> dict:
     declared_error = {}
     fx0, _ = spec["build"](spec["amp"])
     if "params" in fx0:
-        base = sims.MOTOR_A if motor == "A" else sims.MOTOR_B
+        base = {"A": sims.MOTOR_A, "B": sims.MOTOR_B, "C": sims.MOTOR_C}[motor]
         declared_error = {k: {"declared": base[k], "true": v} for k, v in fx0["params"].items()}
     return {
         "id": spec["id"], "class": spec["class"], "split": spec["split"], "motor": motor,
         "netlist": netlist, "regime": regime, "sample_rate_Hz": fs, "duration_s": dur,
         "csv": f"benchmarks/diagnosis/records/{spec['id']}.csv",
-        "probes": list(sims.PROBES[motor]),
+        "probes": probes_of(spec),
         "inputs": ["u"] if (motor, regime) == ("B", "slow") else [],
         "free": spec["free"], "declared_error": declared_error,
         "noise": ns, "noise_text": describe_noise(ns), "seed": spec["seed"],
         "effects": effects, "declared_terms": DECLARED[motor],
         "signature_sigma": sig, "marginal": spec["marginal"], "note": spec["note"],
+        **({"signature_sigma_beyond_vanishing": spec["signature_beyond"]}
+           if "signature_beyond" in spec else {}),
     }
 
 
@@ -432,7 +518,7 @@ def main() -> int:
         if not args.truth_only:
             rng = np.random.default_rng(spec["seed"])
             ns = noise_spec(spec)
-            cols = {p: sims.add_noise(rng, clean[p], ns[p]) for p in sims.PROBES[spec["motor"]]}
+            cols = {p: sims.add_noise(rng, clean[p], ns[p]) for p in probes_of(spec)}
             if "u" in clean:
                 cols["u"] = clean["u"]
             write_csv(RECORDS / f"{spec['id']}.csv", _grid(spec["motor"], spec["regime"]), cols)

@@ -1,6 +1,6 @@
 """Run circuitsim's diagnosis on the benchmark records and score it against truth.json.
 
-    python benchmarks/diagnosis/run.py --split tune          # or heldout, fresh, all
+    python benchmarks/diagnosis/run.py --split tune          # or heldout, fresh, fresh2, all
     python benchmarks/diagnosis/run.py --only c01,n02 --timeout 600
     python benchmarks/diagnosis/run.py --split all --score-only   # re-print from results/
 
@@ -379,7 +379,8 @@ def run_one(entry: dict, timeout: float, circuitsim_dir: str | None, niceness: i
 
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--split", choices=("tune", "heldout", "fresh", "all"), default="tune")
+    ap.add_argument("--split", choices=("tune", "heldout", "fresh", "fresh2", "all"),
+                    default="tune")
     ap.add_argument("--only", default="", help="record ids, comma-separated")
     ap.add_argument("--timeout", type=float, default=1200.0, help="per record [s]")
     ap.add_argument("--rerun", action="store_true", help="ignore stored results")
@@ -404,7 +405,7 @@ def main() -> int:
             print(f"diagnosing {e['id']} ...", flush=True)
             run_one(e, args.timeout, args.circuitsim, args.nice)
     totals = [0, 0]
-    for split in ("tune", "heldout", "fresh"):
+    for split in ("tune", "heldout", "fresh", "fresh2"):
         part = [e for e in sel if e["split"] == split]
         if part:
             r, n = report(part, split)

@@ -1,6 +1,6 @@
 """Hand-written reference simulators for the diagnosis benchmark (scipy only: no circuitsim).
 
-Two brushed DC motors, each with a set of optional physical effects written out by hand, so
+Three brushed DC drives, each with a set of optional physical effects written out by hand, so
 that the records the benchmark feeds to ``circuitsim diagnose`` come from an independent
 implementation of the physics, not from circuitsim's own patched netlists.
 
@@ -23,7 +23,27 @@ b = 2e-6 N m s/rad, no declared ripple. Two drives: ``fast`` (a 6 V source from 
 interpolated as circuitsim's table source does, plus a declared 1 mN m load torque switched on
 at 2.5 s). Probes: current (armature current) and speed.
 
-Effects (``fx`` dict, all optional; names are physical, SI units):
+Motor C -- a two-mass drive of this benchmark's own design (netlists/motor_c.yaml): motor B's
+armature (R = 2.5 ohm, L = 1.2 mH, k = 0.02) and a rotor J1 = 4e-6 kg m^2 (viscous b1 = 2e-6
+N m s/rad) drive a load inertia J2 = 12e-6 kg m^2 (viscous b2 = 1e-5 N m s/rad) through a
+compliant coupling K (c = 0.75 N m/rad, d = 1.5e-4 N m s/rad): resonance 500 rad/s = 79.6 Hz,
+damping ratio 0.05. Drive: the voltage command PWL_C with reversals, 0.6 s from rest.
+Probes: current, speed (rotor) and load_speed (an encoder on the load). Its own ODE
+(``simulate_c``), state [i, w1, w2, phi_rel, th2]; effects (``fx`` keys):
+    backlash        total play [rad] of the coupling (Modelica's ElastoBacklash, as
+                    circuitsim's ``backlash``): no torque while |phi_rel| < gap/2; in contact
+                    c (phi_rel -+ gap/2) + d w_rel, clipped so the damping never pulls the sides
+                    together. The contact events are located (solve_ivp events, the torque law
+                    fixed per piece between events), max_step MAX_STEP_C
+    Rser, Rs        series / source resistance [ohm]
+    Fc_load, wc_load  Coulomb friction Fc tanh(w2/wc) on the load [N m], [rad/s]
+    T_load          constant load torque against the load's positive direction [N m]
+    hardening       kh [1/rad^2]: coupling torque c phi_rel (1 + kh phi_rel^2) + d w_rel
+                                                                                   [outside]
+    load_ripple_c   (order, T [N m], phase): the load receives T sin(order th2 + phase), a
+                    non-integer order is outside the catalog                       [outside]
+
+Effects of motors A and B (``fx`` dict, all optional; names are physical, SI units):
     Rser            series resistance added to the armature [ohm]
     Rs              internal (source) resistance of the supply [ohm]
     Vb, Vb_eps      brush drop Vb*tanh(i/Vb_eps) opposing the current [V], [A]
@@ -75,7 +95,8 @@ MOTOR_B = {
     "Vs": 6.0, "R": 2.5, "L": 1.2e-3, "k": 0.02, "J": 4e-6, "b": 2e-6, "T_load": 1e-3,
     "t_load": 2.5,
 }
-PROBES = {"A": ("i_total", "speed"), "B": ("current", "speed")}
+PROBES = {"A": ("i_total", "speed"), "B": ("current", "speed"),
+          "C": ("current", "speed", "load_speed")}
 APRBS_FILE = HERE / "netlists" / "inputs" / "motor_b_aprbs.csv"
 
 
@@ -233,9 +254,11 @@ def _rhs_factory(motor: str, fx: dict, u_fn):
 
 def simulate(motor: str, regime: str, t: np.ndarray, fx: dict | None = None,
              rtol: float = 1e-10, atol: float = 1e-12, method: str = "LSODA") -> dict:
-    """Noise-free probes of ``motor`` ('A' or 'B') at the sample times ``t`` (from rest at
+    """Noise-free probes of ``motor`` ('A', 'B' or 'C') at the sample times ``t`` (from rest at
     t = 0), with the effects ``fx`` (see the module docstring). Returns {probe: array}; for
     motor B slow also the input column 'u'."""
+    if motor == "C":
+        return simulate_c(t, fx, rtol=rtol, atol=atol)
     fx = dict(fx or {})
     if motor == "B" and regime == "slow":
         tb, ub = read_aprbs()
@@ -348,3 +371,122 @@ def add_noise(rng, y: np.ndarray, spec: dict) -> np.ndarray:
     if spec.get("quant"):
         out = quantise(out, spec["quant"])
     return out
+
+
+# ------------------------------------------------------------------- motor C (two-mass)
+
+MOTOR_C = {
+    "R": 2.5, "L": 1.2e-3, "k": 0.02, "J1": 4e-6, "b1": 2e-6, "c": 0.75, "d": 1.5e-4,
+    "J2": 12e-6, "b2": 1e-5,
+}
+# the voltage command of netlists/motor_c.yaml: (t [s], V [V]) breakpoints, linear between
+PWL_C = ((0.0, 0.0), (0.001, 4.0), (0.12, 4.0), (0.121, -4.0), (0.24, -4.0), (0.241, 2.0),
+         (0.33, 2.0), (0.331, 0.0), (0.4, 0.0), (0.401, -3.0), (0.5, -3.0), (0.501, 3.0),
+         (0.6, 3.0))
+MAX_STEP_C = 5e-5  # [s] half a sample at 10 kHz; 1/250 of the 79.6 Hz coupling period
+
+
+def _coupling_c(p, fx):
+    """The coupling's torque law tau(phi_rel [rad], w_rel [rad/s], mode) [N m] and its half
+    play h [rad]. mode 0: in the gap (or no play), +1 / -1: in contact on that side. The
+    torque decelerates the rotor and drives the load."""
+    c, d = p["c"], p["d"]
+    h = fx.get("backlash", 0.0) / 2
+    kh = fx.get("hardening", 0.0)
+
+    def tau(phi, w, mode):
+        if h == 0.0:
+            return c * phi * (1 + kh * phi * phi) + d * w
+        if mode == 0:
+            return 0.0
+        push = c * (phi - mode * h) + d * w
+        # in contact the damper may slow the approach but never glue the sides together
+        return max(push, 0.0) if mode > 0 else min(push, 0.0)
+    return tau, h
+
+
+def _rhs_c(fx, u_fn):
+    """Right-hand side of motor C for a fixed contact mode. State x = [i, w1, w2, phi_rel,
+    th2]: armature current [A], rotor and load speeds [rad/s], coupling twist th1 - th2 [rad],
+    load angle [rad]."""
+    p = {**MOTOR_C, **fx.get("params", {})}
+    tau, h = _coupling_c(p, fx)
+    rloop = p["R"] + fx.get("Rser", 0.0) + fx.get("Rs", 0.0)
+    fc2, wc2 = fx.get("Fc_load", 0.0), fx.get("wc_load", 0.05)
+    t_load = fx.get("T_load", 0.0)
+    ripple = fx.get("load_ripple_c")  # (order [1], T [N m], phase [rad]) of the load angle
+
+    def rhs(t, x, mode):
+        i, w1, w2, phi, th2 = x
+        ts = tau(phi, w1 - w2, mode)
+        di = (u_fn(t) - rloop * i - p["k"] * w1) / p["L"]
+        dw1 = (p["k"] * i - p["b1"] * w1 - ts) / p["J1"]
+        tl = ts - p["b2"] * w2 - fc2 * math.tanh(w2 / wc2) - t_load
+        if ripple is not None:
+            tl += ripple[1] * math.sin(ripple[0] * th2 + ripple[2])
+        return [di, dw1, tl / p["J2"], w1 - w2, w2]
+    return rhs, h
+
+
+def _segment_c(rhs, h, a, b, x0, mode, rtol, atol):
+    """Integrate motor C over [a, b] from x0, switching the contact mode at the located
+    events (the twist reaching +-h). Returns the list of (t0, t1, dense solution), the final
+    state and mode."""
+    pieces = []
+    while True:
+        if h == 0.0:
+            events = []
+        elif mode == 0:  # in the gap: reaching either side
+            events = [lambda t, x, m: x[3] - h, lambda t, x, m: x[3] + h]
+            events[0].direction, events[1].direction = 1, -1
+        else:  # in contact on side `mode`: leaving it
+            events = [lambda t, x, m: x[3] - m * h]
+            events[0].direction = -mode
+        for ev in events:
+            ev.terminal = True
+        sol = solve_ivp(rhs, (a, b), x0, method="LSODA", rtol=rtol, atol=atol, args=(mode,),
+                        max_step=MAX_STEP_C, dense_output=True, events=events or None)
+        if not sol.success:
+            raise RuntimeError(f"solve_ivp failed on [{a}, {b}]: {sol.message}")
+        pieces.append((a, sol.t[-1], sol.sol))
+        x0 = sol.y[:, -1].copy()
+        if sol.status != 1:
+            return pieces, x0, mode
+        a = sol.t[-1]
+        if mode == 0:  # at a side: contact if still closing, else it grazes the side
+            side = 1 if x0[3] > 0 else -1
+            x0[3] = side * h
+            mode = side if side * (x0[1] - x0[2]) > 0 else 0
+        else:
+            x0[3] = mode * h
+            mode = 0
+
+
+def simulate_c(t: np.ndarray, fx: dict | None = None, rtol: float = 1e-10,
+               atol: float = 1e-12) -> dict:
+    """Noise-free probes of motor C (netlists/motor_c.yaml) at the sample times ``t`` [s],
+    from rest, with the effects ``fx`` (module docstring). The integration is split at the
+    command's breakpoints and, with a backlash, at every contact event (located by
+    solve_ivp's event search, the torque law fixed per piece). Returns {probe: array}."""
+    fx = dict(fx or {})
+    tb = np.array([q[0] for q in PWL_C])
+    ub = np.array([q[1] for q in PWL_C])
+
+    def u_fn(tt):
+        return float(np.interp(tt, tb, ub))
+    rhs, h = _rhs_c(fx, u_fn)
+    edges = [0.0, *[float(b) for b in tb if 0 < b < t[-1]], float(t[-1])]
+    x0, mode = np.zeros(5), 0
+    pieces = []
+    for a, b in pairwise(edges):
+        got, x0, mode = _segment_c(rhs, h, a, b, x0, mode, rtol, atol)
+        pieces.extend(got)
+    out = np.empty((5, t.size))
+    for a, b, sol in pieces:
+        sel = (t >= a) & (t <= b)
+        if sel.any():
+            out[:, sel] = sol(t[sel])
+    res = {"current": out[0], "speed": out[1], "load_speed": out[2]}
+    for name, s in fx.get("sensor", {}).items():
+        res[name] = s.get("gain", 1.0) * res[name] + s.get("offset", 0.0)
+    return res
