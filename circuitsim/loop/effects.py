@@ -22,7 +22,7 @@ from circuitsim.netlist.load import Netlist, RawNetlist
 CATALOG_IDS = ("series-resistance", "source-resistance", "brush-drop", "coulomb-friction",
                "stribeck-friction", "viscous-friction", "cogging", "unbalance", "emf-harmonic",
                "inductor-saturation", "resistance-drift", "force-offset", "sensor-gain",
-               "sensor-offset", "sensor-delay", "backlash")
+               "sensor-offset", "sensor-delay", "backlash", "inertia")
 
 
 @dataclass(frozen=True)
@@ -44,6 +44,9 @@ class Candidate:
     # invisible while the size is at its null, so the screen keeps them at their start (one
     # candidate per start) and only the refit moves them
     shape: tuple[str, ...] = ()
+    # it re-tunes a value the netlist declares (an inertia) rather than adding physics: an
+    # accepted one is reported as a correction of that value, never as a new cause
+    retunes: bool = False
 
     @property
     def key(self) -> str:
@@ -283,9 +286,22 @@ def _warmup(name: str, duration: float) -> list[Candidate]:
     return out
 
 
+#: declared inertias whose value a diagnosis may re-tune: (type, parameter)
+INERTIAS = {"inertia": "J", "mass": "m"}
+
+
 def _component_laws(net: Netlist, duration: float | None = None) -> list[Candidate]:
     out: list[Candidate] = []
     for c in _declared(net):
+        if c.type in INERTIAS:
+            # a body the netlist does not hold (a load on the shaft) or a wrong datasheet
+            # value: the declared inertia is off, a correction, not a new cause
+            p = _pname("inertia", c.name, "dJ")
+            out.append(Candidate(
+                "inertia", c.name, {p: (0.0, -0.9, 10.0)}, {},
+                f"the inertia of {c.name} off by a factor 1 + dJ (a body the netlist lacks)",
+                lambda r, n=c.name, p=p, k=INERTIAS[c.type]: _scale(r, n, k, p),
+                steps={p: 1e-3}, retunes=True))
         if c.type in ("L", "inductor"):
             p = _pname("inductor-saturation", c.name, "Ipar")
             q = _pname("inductor-saturation", c.name, "ratio")
@@ -405,19 +421,27 @@ def _probe_patch(raw: RawNetlist, probe: str, param: str, template: str) -> None
 
 def declared_orders(raw: RawNetlist) -> dict[tuple[str, str], set[int]]:
     """Harmonic orders the netlist already declares: (effect, target) -> orders. An
-    ``emf-harmonic`` or ``cogging`` candidate of such an order re-tunes a declared term."""
+    ``emf-harmonic`` or ``cogging`` candidate of such an order re-tunes a declared term; a
+    converter's EMF harmonic declares its order on the converter's shaft too."""
     out: dict[tuple[str, str], set[int]] = {}
     for entry, _, _ in raw.comps:
         harmonics = entry.get("harmonics")
         if not isinstance(harmonics, list):
             continue
-        key = ("cogging", str(entry.get("shaft"))) if entry.get("type") == "cogging" else \
-            ("emf-harmonic", str(entry.get("name")))
+        keys = [("cogging", str(entry.get("shaft")))] if entry.get("type") == "cogging" else \
+            [("emf-harmonic", str(entry.get("name")))]
+        if entry.get("type") != "cogging" and entry.get("shaft") is not None:
+            # an EMF harmonic's torque side: a converter whose EMF ripples at order k also
+            # pulls its shaft at order k (all of it when the coupling conserves energy), so a
+            # torque of that order on that shaft re-tunes the declared term
+            keys.append(("cogging", str(entry["shaft"])))
         for h in harmonics:
             try:
-                out.setdefault(key, set()).add(int(float(h["order"])))
+                k = int(float(h["order"]))
             except (TypeError, ValueError, KeyError):
                 continue
+            for key in keys:
+                out.setdefault(key, set()).add(k)
     return out
 
 
@@ -429,6 +453,14 @@ def _saturate(raw: RawNetlist, name: str, ipar: str, ratio: str) -> None:
     e["Linf"] = f"({lval})*{ratio}" if not isinstance(lval, (int, float)) else \
         f"{float(lval)!r}*{ratio}"
     e["Ipar"] = ipar
+
+
+def _scale(raw: RawNetlist, name: str, key: str, rel: str) -> None:
+    """Scale a component's value by (1 + rel), ``rel`` a new parameter (null 0)."""
+    e = raw.component_entry(name)
+    value = e[key]
+    e[key] = f"{float(value)!r}*(1 + {rel})" if isinstance(value, (int, float)) else \
+        f"({value})*(1 + {rel})"
 
 
 def _drift(raw: RawNetlist, name: str, alpha: str) -> None:

@@ -251,10 +251,11 @@ def _near_ties(screens: list[Screen], top: int) -> list[Screen]:
 
 
 def _refit_round(setup: Setup, state: ModelState, screens: list[Screen],
-                 log: dict[str, Any]) -> tuple[Trial, bool] | None:
+                 log: dict[str, Any]) -> tuple[Trial, frozenset[str]] | None:
     """Stage 4: refit the screened candidates and keep the best that passes; when none
-    passes alone, the best two together."""
-    trials: list[tuple[Trial, bool]] = []
+    passes alone, the best two together. Each trial comes with the keys of its candidates
+    that re-tune a declared term (corrections)."""
+    trials: list[tuple[Trial, frozenset[str]]] = []
     for s in screens:
         c = s.proposal.candidate
         setup.log(f"refitting {c.key}")
@@ -266,12 +267,12 @@ def _refit_round(setup: Setup, state: ModelState, screens: list[Screen],
             continue
         judge(setup, state, trial)
         setup.log(f"  {c.key}: {trial.note}")
-        trials.append((trial, s.proposal.correction))
+        trials.append((trial, _corrections([s])))
     passed = [t for t in trials if t[0].passed]
     if not passed and len(screens) >= 2:
         pair = _pair(setup, state, screens[:2])
         if pair is not None and pair.passed:
-            passed = [(pair, False)]
+            passed = [(pair, _corrections(screens[:2]))]
     for t, _ in trials:
         if (t, _) not in passed:
             log["tried"].add(t.key)
@@ -296,6 +297,10 @@ def _refit_round(setup: Setup, state: ModelState, screens: list[Screen],
     return best
 
 
+def _corrections(screens: list[Screen]) -> frozenset[str]:
+    return frozenset(s.proposal.candidate.key for s in screens if s.proposal.correction)
+
+
 def _pair(setup: Setup, state: ModelState, screens: list[Screen]) -> Trial | None:
     """Two candidates refitted together: one may have been absorbing both effects."""
     a, b = (s.proposal.candidate for s in screens)
@@ -308,7 +313,7 @@ def _pair(setup: Setup, state: ModelState, screens: list[Screen]) -> Trial | Non
     return None if trial is None else judge(setup, state, trial)
 
 
-def _accept(setup: Setup, state: ModelState, winner: tuple[Trial, bool],
+def _accept(setup: Setup, state: ModelState, winner: tuple[Trial, frozenset[str]],
             log: dict[str, Any]) -> ModelState:
     trial, correction = winner
     raw = state.raw
@@ -325,9 +330,10 @@ def _accept(setup: Setup, state: ModelState, winner: tuple[Trial, bool],
     trial_free = {*setup.declared, *(n for c in trial.candidates for n in c.free)}
     fit = trial.fit if set(free) <= trial_free and trial.fit.success else \
         refit(setup, model, free, dict(trial.fit.params), bounds, nfev=40)
-    chosen = [*state.chosen, *(Choice(c, correction) for c in trial.candidates)]
-    setup.log(f"accepted {trial.key}" + (" (a correction of a declared term)"
-                                         if correction else "") + f": error {fit.error:.4g}")
+    chosen = [*state.chosen, *(Choice(c, c.key in correction) for c in trial.candidates)]
+    setup.log(f"accepted {trial.key}" + (f" ({', '.join(sorted(correction))}: a correction "
+                                         "of a declared term)" if correction else "") +
+              f": error {fit.error:.4g}")
     return ModelState(raw, model, free, dict(fit.params), fit, bounds, chosen, state.base_raw)
 
 

@@ -93,8 +93,10 @@ class Diagnosis:
             head = "something remains that I cannot name: no effect of the catalog explains it"
         else:
             head = "nothing significant: no effect of the catalog explains the residual"
-        fixes = "".join(f"; corrected the declared {a.effect} on {a.target} (order "
-                        f"{a.parameters.get('order', '?')})" for a in self.corrections)
+        fixes = "".join(f"; corrected the declared {a.effect} on {a.target} ("
+                        + (f"order {a.parameters['order']:g}" if "order" in a.parameters else
+                           ", ".join(f"{k} = {v:.4g}" for k, v in a.parameters.items()))
+                        + ")" for a in self.corrections)
         tail = ("; structure remains: " + self.remaining["note"]) if structure else ""
         return (f"{head}{fixes} (error {self.error_before:.4g} -> {self.error_after:.4g})"
                 f"{tail}")

@@ -75,7 +75,7 @@ def propose(setup: Setup, state: ModelState, orders: Mapping[str, list[int]],
         order = c.fixed.get("order")
         same = order is not None and int(order) in declared.get(
             ("cogging" if c.effect == "unbalance" else c.effect, c.target), set())
-        out.append(Proposal(c, same))
+        out.append(Proposal(c, same or c.retunes))
     return out
 
 
