@@ -49,6 +49,7 @@ from circuitsim.loop.diagnose.screen import (
     Screen,
     on_waveform,
     projections,
+    promise,
     propose,
     screen_many,
 )
@@ -174,8 +175,13 @@ def _screen_round(setup: Setup, state: ModelState, log: dict[str, Any]) -> list[
                       float(np.linalg.norm(fn(alt) - fn(state.fit.sim)))) for fn in (slow, wave)}
     analysis = analyse(state.model, setup.record, state.fit, setup.probes)
     props = _distinct(state, propose(setup, state, _orders(analysis), log["tried"]), log)
+    # a speed effect on an angle-locked model is seen in the slow features (a large one
+    # slides the ripple out of phase, beyond any linearisation) and on the waveform (a
+    # marginal one shows mostly as the ripple's slow phase drift, which the slow features
+    # average away): the better promise of the two counts
     out = [s for s in screen_many(setup, state, props,
-                                  lambda p: wave if on_waveform(p.candidate) else slow,
+                                  lambda p: wave if on_waveform(p.candidate) or not locked
+                                  else (slow, wave),
                                   lambda fn: noise[id(fn)])
            if s is not None and s.share > 0]
     # one whose gain cannot pay the BIC margin as a white-noise likelihood ratio in the space
@@ -227,11 +233,7 @@ def _distinct(state: ModelState, proposals: list, log: dict[str, Any]) -> list:
     return out
 
 
-def _score(s: Screen) -> float:
-    """The BIC fall a screened gain promises (white noise, in its own space)."""
-    dim = max(s.dim, 2)
-    return -dim * math.log(max(1.0 - s.share, 1e-300)) - \
-        len(s.proposal.candidate.free) * math.log(dim)
+_score = promise
 
 
 def _near_ties(screens: list[Screen], top: int) -> list[Screen]:

@@ -137,15 +137,16 @@ def screen(setup: Setup, state: ModelState, proposal: Proposal, project: Project
 
 
 def screen_many(setup: Setup, state: ModelState, proposals: list[Proposal],
-                projector: Callable[[Proposal], Projector], noise: Callable[[Projector], float]
-                ) -> list[Screen]:
+                projector: Callable[[Proposal], Projector | tuple[Projector, ...]],
+                noise: Callable[[Projector], float]) -> list[Screen]:
     """Every proposal's score test, the linearisable ones from one batched run of a model
     carrying all their patches at once.
 
     At their null values the patches are inert, so the joint model's base run is the current
     model's and the step of one candidate's parameter is that candidate's own sensitivity:
     one compile and one integration of 1 + (their free parameters) members replace one of
-    each per candidate. A candidate whose step leaves the linear range is re-stepped alone in
+    each per candidate. ``projector`` may give alternative projections (slow features and
+    the waveform): each is scored from the same runs and the best promise is kept. A candidate whose step leaves the linear range is re-stepped alone in
     the joint model; when the joint model cannot be built or run, each is screened alone.
     """
     joint = [p for p in proposals if p.candidate.effect not in SENSOR_LAWS
@@ -157,16 +158,29 @@ def screen_many(setup: Setup, state: ModelState, proposals: list[Proposal],
     out = []
     for prop in rest:
         setup.log(f"screening {prop.candidate.key}")
-        out.append(screen(setup, state, prop, projector(prop), noise(projector(prop))))
+        fn = _alternatives(projector(prop))[0]
+        out.append(screen(setup, state, prop, fn, noise(fn)))
     accepted = _accepted_steps(state)
     for prop in joint:
         setup.log(f"screening {prop.candidate.key}")
-        fn = projector(prop)
         mine = {n: runs[members[n]] for n in sized(prop.candidate)}
-        retune = _columns(runs, members, accepted, fn)
-        out.append(_from_runs(setup, prop, model, runs[0], mine, fn, noise(fn),
-                              _null_params(state, joint), retune))
+        # one projection, or alternatives seen from the same runs: the best promise counts
+        views = [_from_runs(setup, prop, model, runs[0], mine, fn, noise(fn),
+                            _null_params(state, joint), _columns(runs, members, accepted, fn))
+                 for fn in _alternatives(projector(prop))]
+        out.append(max((v for v in views if v is not None), key=promise, default=None))
     return out
+
+
+def _alternatives(project: Projector | tuple[Projector, ...]) -> tuple[Projector, ...]:
+    return project if isinstance(project, tuple) else (project,)
+
+
+def promise(s: Screen) -> float:
+    """The BIC fall a screened gain promises (white noise, in its own space)."""
+    dim = max(s.dim, 2)
+    return -dim * math.log(max(1.0 - s.share, 1e-300)) - \
+        len(s.proposal.candidate.free) * math.log(dim)
 
 
 def sized(candidate) -> list[str]:
