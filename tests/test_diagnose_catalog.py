@@ -215,3 +215,16 @@ def test_backlash_and_load_friction_together_on_the_two_mass_drive():
     final = {k: v["estimate"] for k, v in d.final_parameters().items()}
     assert final["backlash_K_gap"] == pytest.approx(0.005, rel=0.05)
     assert final["coulomb_friction_load_c"] == pytest.approx(2e-3, rel=0.05)
+
+
+def test_a_load_the_netlist_lacks_is_a_correction_of_the_declared_inertia():
+    """A body on the shaft the netlist does not hold: the declared inertia is off, reported
+    as a correction with its factor, not as a new cause."""
+    rec = make_record("dc", [("inertia", "Jr", None, [0.3])], seed=13)
+    d = diagnose(cs.load(MOTORS["dc"]["netlist"]), rec)
+    assert not d.effects, d.summary()
+    (fix,) = d.corrections
+    assert (fix.effect, fix.target) == ("inertia", "Jr")
+    final = {k: v["estimate"] for k, v in d.final_parameters().items()}
+    assert final["inertia_Jr_dJ"] == pytest.approx(0.3, rel=0.05)
+    assert d.error_after < 0.2 * d.error_before

@@ -221,3 +221,20 @@ def test_a_coupling_reads_no_shaft_angle_but_a_ripple_does():
     assert not angle_locked(_compile(cs.load(TWO_MASS)))
     assert not angle_locked(_compile(cs.load(NETLISTS / "breadth" / "drivetrain.yaml")))
     assert angle_locked(_compile(cs.load(NETLISTS / "kim2024" / "base.yaml")))
+
+
+def test_an_emf_harmonic_declares_its_order_on_its_shaft_too():
+    """The Kim motor's 8th-order EMF ripple: an EMF harmonic of order 8 on M and a torque of
+    order 8 on its shaft both re-tune it; an inertia is re-tuned, never added."""
+    net = cs.load(NETLISTS / "kim2024" / "base.yaml")
+    declared = effects.declared_orders(net.raw)
+    assert declared[("emf-harmonic", "M")] == {8} and declared[("cogging", "rotor")] == {8}
+    (inertia,) = [c for c in effects.candidates(net) if c.effect == "inertia"]
+    assert inertia.retunes and inertia.target == "Jr"
+    model = _compile(build(inertia.apply(net.raw)))
+    (dj,) = inertia.free
+    t = np.linspace(0.0, 1e-4, 11)
+    fast = model.simulate(stop=1e-4, t_eval=t, rtol=1e-10, atol=1e-14)
+    slow = model.simulate(stop=1e-4, t_eval=t, params={dj: 1.0}, rtol=1e-10, atol=1e-14)
+    # from rest, before the back-EMF acts: the speed is the torque's integral over J
+    assert slow["speed"][1:5] == pytest.approx(fast["speed"][1:5] / 2, rel=1e-3)
