@@ -176,13 +176,13 @@ def _screen_round(setup: Setup, state: ModelState, log: dict[str, Any]) -> list[
     analysis = analyse(state.model, setup.record, state.fit, setup.probes)
     props = _distinct(state, propose(setup, state, _orders(analysis), log["tried"]), log)
     # a speed effect on an angle-locked model is seen in the slow features (a large one
-    # slides the ripple out of phase, beyond any linearisation) and on the waveform (a
-    # marginal one shows mostly as the ripple's slow phase drift, which the slow features
-    # average away): the better promise of the two counts
+    # slides the ripple out of phase, beyond any linearisation), and on the waveform when the
+    # slow features do not show it (a marginal one shows mostly as the ripple's slow phase
+    # drift, which they average away)
     out = [s for s in screen_many(setup, state, props,
                                   lambda p: wave if on_waveform(p.candidate) or not locked
                                   else (slow, wave),
-                                  lambda fn: noise[id(fn)])
+                                  lambda fn: noise[id(fn)], BIC_MARGIN)
            if s is not None and s.share > 0]
     # one whose gain cannot pay the BIC margin as a white-noise likelihood ratio in the space
     # it was measured in will not pass after a refit either; the rest are ranked by the share

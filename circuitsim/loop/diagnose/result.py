@@ -98,6 +98,8 @@ class Diagnosis:
                            ", ".join(f"{k} = {v:.4g}" for k, v in a.parameters.items()))
                         + ")" for a in self.corrections)
         tail = ("; structure remains: " + self.remaining["note"]) if structure else ""
+        if self.indistinct:  # a label the data cannot single out is said to be so
+            tail = "; " + "; ".join(self.indistinct) + tail
         return (f"{head}{fixes} (error {self.error_before:.4g} -> {self.error_after:.4g})"
                 f"{tail}")
 

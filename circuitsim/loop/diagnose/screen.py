@@ -138,15 +138,16 @@ def screen(setup: Setup, state: ModelState, proposal: Proposal, project: Project
 
 def screen_many(setup: Setup, state: ModelState, proposals: list[Proposal],
                 projector: Callable[[Proposal], Projector | tuple[Projector, ...]],
-                noise: Callable[[Projector], float]) -> list[Screen]:
+                noise: Callable[[Projector], float], margin: float = 10.0) -> list[Screen]:
     """Every proposal's score test, the linearisable ones from one batched run of a model
     carrying all their patches at once.
 
     At their null values the patches are inert, so the joint model's base run is the current
     model's and the step of one candidate's parameter is that candidate's own sensitivity:
     one compile and one integration of 1 + (their free parameters) members replace one of
-    each per candidate. ``projector`` may give alternative projections (slow features and
-    the waveform): each is scored from the same runs and the best promise is kept. A candidate whose step leaves the linear range is re-stepped alone in
+    each per candidate. ``projector`` may give alternative projections in order of
+    preference (slow features, then the waveform): each is scored from the same runs, and the
+    first whose promise pays ``margin`` (the BIC margin) is kept. A candidate whose step leaves the linear range is re-stepped alone in
     the joint model; when the joint model cannot be built or run, each is screened alone.
     """
     joint = [p for p in proposals if p.candidate.effect not in SENSOR_LAWS
@@ -164,12 +165,18 @@ def screen_many(setup: Setup, state: ModelState, proposals: list[Proposal],
     for prop in joint:
         setup.log(f"screening {prop.candidate.key}")
         mine = {n: runs[members[n]] for n in sized(prop.candidate)}
-        # one projection, or alternatives seen from the same runs: the best promise counts
+        # one projection, or alternatives in order of preference, seen from the same runs
         views = [_from_runs(setup, prop, model, runs[0], mine, fn, noise(fn),
                             _null_params(state, joint), _columns(runs, members, accepted, fn))
                  for fn in _alternatives(projector(prop))]
-        out.append(max((v for v in views if v is not None), key=promise, default=None))
+        out.append(_preferred([v for v in views if v is not None], margin))
     return out
+
+
+def _preferred(views: list[Screen], margin: float) -> Screen | None:
+    """The first view whose promise pays the margin; when none does, the most promising."""
+    return next((v for v in views if promise(v) > margin),
+                max(views, key=promise, default=None))
 
 
 def _alternatives(project: Projector | tuple[Projector, ...]) -> tuple[Projector, ...]:
