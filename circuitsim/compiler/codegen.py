@@ -399,7 +399,7 @@ def band_smu(typingctx, x):
 @intrinsic
 def sparse_data(typingctx, x):
     # a sparse SUNMatrix's content: int32 M, N, NNZ, NP, then the data pointer, int
-    # sparsetype, the row indices and the column pointers (checked in solve/sundials_libs.py)
+    # sparsetype, the row indices and the column pointers (checked in solve/direct.py)
     return types.voidptr(types.voidptr), _band_field(16, ir.IntType(8).as_pointer())
 
 
