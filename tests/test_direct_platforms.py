@@ -235,7 +235,7 @@ def test_a_refused_platform_warns_once_and_runs_the_python_route(
     from circuitsim.errors import CircuitWarning
 
     model = compile_text(_PULSE)
-    monkeypatch.delenv("CIRCUITSIM_KERNELS", raising=False)
+    monkeypatch.setenv("CIRCUITSIM_KERNELS", "python")
     python = model.simulate()
     why = _refused(monkeypatch, how)
     monkeypatch.setenv("CIRCUITSIM_KERNELS", "numba")

@@ -244,7 +244,7 @@ def ida_for(opts: dict) -> DirectIDA | None:
         kind = _kind(module, model, members, opts.get("linsolver"))
         data = None
         if kind is not None and members is None and hasattr(module, "LINEAR"):
-            data = _large_data(module, model, opts["userdata"], kind)
+            data = _large_data(module, model, opts["userdata"])
         elif kind is not None and members is None and hasattr(module, "TABLES"):
             data = _table_data(model, opts["userdata"])
     except Exception as exc:  # noqa: BLE001 - numba and the libraries fail in many ways
@@ -288,7 +288,7 @@ def _kind(module, model, members, linsolver: str | None) -> str | None:
     return has if linsolver == has == model.linsolver else None
 
 
-def _large_data(module, model, p, kind: str) -> np.ndarray:
+def _large_data(module, model, p) -> np.ndarray:
     """The user data of a large model's kernels: the parameters, then Ly's and Lyp's CSR
     arrays (index pointers, column indices, values) as float64, the very matrices the Python
     residual multiplies by."""
