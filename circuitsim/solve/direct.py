@@ -54,51 +54,25 @@ class Result:
 
 @functools.cache
 def _libraries() -> dict[str, Any]:
-    """scikit-sundae's bundled SUNDIALS libraries, with the signatures used here."""
+    """scikit-sundae's bundled SUNDIALS libraries, with the signatures used here, once checked
+    to be the build the kernels read (``solve/sundials_libs.py``; else LibrariesUnavailable,
+    whose message says why)."""
+    from circuitsim.solve import sundials_libs
     from circuitsim.solve.sundae import ida_class
 
-    ida_class()  # the libraries are loaded with scikit-sundae's own modules
-    spec = importlib.util.find_spec("sksundae")
-    folder = Path(spec.origin).parent.parent / "scikit_sundae.libs"
-    lib = {name: ctypes.CDLL(str(next(folder.glob(f"libsundials_{name}-*.so*"))),
-                             mode=ctypes.RTLD_GLOBAL)
-           for name in ("core", "nvecserial", "sunmatrixdense", "sunlinsoldense",
-                        "sunmatrixband", "sunlinsolband", "sunmatrixsparse",
-                        "sunlinsolsuperlumt", "ida")}
-    vp, dbl, i32, lng = ctypes.c_void_p, ctypes.c_double, ctypes.c_int, ctypes.c_long
-    for name, res, args in _signatures(vp, dbl, i32, lng):
-        owner, fn = name.split(".")
-        f = getattr(lib[owner], fn)
-        f.restype, f.argtypes = res, args
+    ida_class()  # loaded with scikit-sundae's own modules (on Windows, its import adds the folder)
+    from sksundae import _cy_common
+
+    sundials_libs.check_build(getattr(_cy_common, "config", None))
+    site = Path(importlib.util.find_spec("sksundae").origin).parent.parent
+    lib = sundials_libs.load(sundials_libs.library_paths(site, sys.platform), sys.platform)
+    sundials_libs.check_layouts(lib)
+    # the compiled output loop calls IDASolve by name: given to LLVM by address, it does not
+    # depend on the process-wide search that RTLD_GLOBAL offers on Linux and macOS only
+    from llvmlite import binding
+
+    binding.add_symbol("IDASolve", ctypes.cast(lib["ida"].IDASolve, ctypes.c_void_p).value)
     return lib
-
-
-def _signatures(vp, dbl, i32, lng) -> list:
-    ptr = ctypes.POINTER
-    return [("core.SUNContext_Create", i32, [i32, ptr(vp)]),
-            ("core.SUNContext_ClearErrHandlers", i32, [vp]),
-            ("core.SUNContext_Free", i32, [ptr(vp)]),
-            ("core.N_VGetArrayPointer", ptr(dbl), [vp]), ("core.N_VDestroy", None, [vp]),
-            ("core.SUNMatDestroy", None, [vp]), ("core.SUNLinSolFree", i32, [vp]),
-            ("nvecserial.N_VNew_Serial", vp, [i32, vp]),
-            ("sunmatrixdense.SUNDenseMatrix", vp, [i32, i32, vp]),
-            ("sunlinsoldense.SUNLinSol_Dense", vp, [vp, vp, vp]),
-            ("sunmatrixband.SUNBandMatrix", vp, [i32, i32, i32, vp]),
-            ("sunlinsolband.SUNLinSol_Band", vp, [vp, vp, vp]),
-            ("sunmatrixsparse.SUNSparseMatrix", vp, [i32, i32, i32, i32, vp]),
-            ("sunmatrixsparse.SUNSparseMatrix_Data", vp, [vp]),
-            ("sunmatrixsparse.SUNSparseMatrix_IndexValues", vp, [vp]),
-            ("sunmatrixsparse.SUNSparseMatrix_IndexPointers", vp, [vp]),
-            ("sunlinsolsuperlumt.SUNLinSol_SuperLUMT", vp, [vp, vp, i32, vp]),
-            ("ida.IDACreate", vp, [vp]), ("ida.IDAInit", i32, [vp, vp, dbl, vp, vp]),
-            ("ida.IDAFree", None, [ptr(vp)]), ("ida.IDASStolerances", i32, [vp, dbl, dbl]),
-            ("ida.IDASetLinearSolver", i32, [vp, vp, vp]), ("ida.IDASetJacFn", i32, [vp, vp]),
-            ("ida.IDASetUserData", i32, [vp, vp]), ("ida.IDASetMaxNumSteps", i32, [vp, lng]),
-            ("ida.IDASetMaxStep", i32, [vp, dbl]), ("ida.IDASetId", i32, [vp, vp]),
-            ("ida.IDASetStopTime", i32, [vp, dbl]),
-            ("ida.IDASolve", i32, [vp, dbl, ptr(dbl), vp, vp, i32]),
-            ("ida.IDAGetNumResEvals", i32, [vp, ptr(lng)]),
-            ("ida.IDAGetNumJacEvals", i32, [vp, ptr(lng)])]
 
 
 _LOADED: dict[str, Any] = {}
@@ -256,33 +230,49 @@ class DirectIDA:
 def ida_for(opts: dict) -> DirectIDA | None:
     """A DirectIDA for ``opts["kernels_of"]`` = (model, None) or, for a stacked batch, (model,
     members' parameter vectors) when kernels are wanted, the model has them and they fill
-    the matrix of the linear solver the Python route would use, else None (also, with one
-    warning, when they cannot be built: the Python route then runs)."""
+    the matrix of the linear solver the Python route would use, else None (also when they
+    cannot be built or the libraries cannot serve them: the Python route then runs, with one
+    warning a process for each reason)."""
     model, members = opts["kernels_of"]
     if not wanted() or opts.get("eventsfn"):
         return None
     try:
         module = kernels(model)
-        _libraries()  # found on Linux wheels; elsewhere this fails and the usual route runs
+        # found in the wheel layouts of Linux, macOS and Windows, and checked to be the build
+        # the kernels read (solve/sundials_libs.py); otherwise this raises, naming why
+        _libraries()
         kind = _kind(module, model, members, opts.get("linsolver"))
         data = None
         if kind is not None and members is None and hasattr(module, "LINEAR"):
-            data = _large_data(module, model, opts["userdata"], kind)
+            data = _large_data(module, model, opts["userdata"])
         elif kind is not None and members is None and hasattr(module, "TABLES"):
             data = _table_data(model, opts["userdata"])
     except Exception as exc:  # noqa: BLE001 - numba and the libraries fail in many ways
-        import warnings
-
-        from circuitsim.errors import CircuitWarning
-
         _LOADED[model.key] = None
-        why = (str(exc).strip().splitlines() or [""])[0][:200]
-        warnings.warn(f"compiled kernels unavailable ({type(exc).__name__}: {why}); the "
-                      f"Python residual is used", CircuitWarning, stacklevel=3)
+        _warn_once(exc)
         return None
     if module is None or kind is None:
         return None
     return DirectIDA(module, opts, members, data, kind)
+
+
+#: the refusals warned about in this process: a run asks once per segment, and a process runs
+#: many models, but a reason is worth one warning
+_WARNED: set[str] = set()
+
+
+def _warn_once(exc: Exception) -> None:
+    """Warn that the Python route runs instead, naming the reason, unless it was said before."""
+    import warnings
+
+    from circuitsim.errors import CircuitWarning
+
+    why = (str(exc).strip().splitlines() or [""])[0][:200]
+    message = (f"compiled kernels unavailable ({type(exc).__name__}: {why}); the Python "
+               f"residual is used")
+    if message not in _WARNED:
+        _WARNED.add(message)
+        warnings.warn(message, CircuitWarning, stacklevel=4)
 
 
 def _kind(module, model, members, linsolver: str | None) -> str | None:
@@ -298,15 +288,13 @@ def _kind(module, model, members, linsolver: str | None) -> str | None:
     return has if linsolver == has == model.linsolver else None
 
 
-def _large_data(module, model, p, kind: str) -> np.ndarray:
+def _large_data(module, model, p) -> np.ndarray:
     """The user data of a large model's kernels: the parameters, then Ly's and Lyp's CSR
     arrays (index pointers, column indices, values) as float64, the very matrices the Python
     residual multiplies by."""
     matrices = getattr(model.fns[0], "matrices", None)
     if matrices is None:
         raise ValueError("the Python residual is not the sparse product the kernels repeat")
-    if kind == "sparse":
-        _check_sparse_layout()
     n_p, ny, nyp = module.LINEAR
     ly, lyp = matrices(p)
     if (ly.nnz, lyp.nnz) != (ny, nyp):
@@ -340,24 +328,3 @@ def _table_data(model, p) -> np.ndarray:
 
 #: the last model's table data, by model and parameters (one run asks per segment: built once)
 _TABLE_DATA: dict[str, Any] = {}
-
-
-def _check_sparse_layout() -> None:
-    """The kernels find a sparse matrix's data, row indices and column pointers at fixed
-    offsets in its content (SUNDIALS 7, 32-bit indices): check them against the library's
-    own accessors before IDA calls a kernel."""
-    lib = _libraries()
-    ctx = ctypes.c_void_p()
-    lib["core"].SUNContext_Create(0, ctypes.byref(ctx))
-    a = lib["sunmatrixsparse"].SUNSparseMatrix(3, 3, 4, 0, ctx)
-    try:
-        content = ctypes.c_void_p.from_address(a).value
-        got = [ctypes.c_void_p.from_address(content + k).value for k in (16, 32, 40)]
-        sm = lib["sunmatrixsparse"]
-        want = [sm.SUNSparseMatrix_Data(a), sm.SUNSparseMatrix_IndexValues(a),
-                sm.SUNSparseMatrix_IndexPointers(a)]
-    finally:
-        lib["core"].SUNMatDestroy(a)
-        lib["core"].SUNContext_Free(ctypes.byref(ctx))
-    if got != want:
-        raise RuntimeError("SUNDIALS' sparse matrix is not laid out as the kernels expect")
