@@ -238,3 +238,30 @@ def test_an_emf_harmonic_declares_its_order_on_its_shaft_too():
     slow = model.simulate(stop=1e-4, t_eval=t, params={dj: 1.0}, rtol=1e-10, atol=1e-14)
     # from rest, before the back-EMF acts: the speed is the torque's integral over J
     assert slow["speed"][1:5] == pytest.approx(fast["speed"][1:5] / 2, rel=1e-3)
+
+
+def test_patches_that_scale_a_value_take_it_with_its_unit(tmp_path):
+    """A value written with its unit (``2e-3 kg*m^2``, ``1 mH``) cannot sit inside
+    arithmetic: the patch moves it into a parameter of its own and scales that. An inertia
+    doubled halves the acceleration of a torque step; a saturation at its null is the
+    declared inductor."""
+    path = tmp_path / "m.yaml"
+    path.write_text("components:\n"
+                    "  - {name: T1, type: torque, shaft: r, T: 1}\n"
+                    "  - {name: J1, type: inertia, shaft: r, J: 2e-3 kg*m^2}\n"
+                    "  - {name: V1, type: V, p: a, n: gnd, V: 1 V}\n"
+                    "  - {name: R1, type: R, p: a, n: b, R: 1 ohm}\n"
+                    "  - {name: L1, type: L, p: b, n: gnd, L: 1 mH}\n"
+                    "probes: {w: r.w, i: L1.i}\n")
+    net = cs.load(path)
+    t = np.linspace(0.0, 0.01, 11)
+    for c in effects.candidates(net):
+        if c.effect not in ("inertia", "inductor-saturation"):
+            continue
+        res = _compile(build(c.apply(net.raw))).simulate(
+            stop=0.01, t_eval=t, params={next(iter(c.free)): 1.0} if c.retunes else None,
+            rtol=1e-10, atol=1e-12)
+        if c.retunes:
+            assert res["w"] == pytest.approx(t / 4e-3, rel=1e-9, abs=1e-12)
+        else:
+            assert res["i"] == pytest.approx(1 - np.exp(-t / 1e-3), rel=1e-7, abs=1e-12)

@@ -450,17 +450,27 @@ def _saturate(raw: RawNetlist, name: str, ipar: str, ratio: str) -> None:
     lval = e.pop("L")
     e["type"] = "Lsat"
     e["Lzer"] = lval
-    e["Linf"] = f"({lval})*{ratio}" if not isinstance(lval, (int, float)) else \
-        f"{float(lval)!r}*{ratio}"
+    e["Linf"] = f"{_operand(raw, lval, f'{ratio}_L0')}*{ratio}"
     e["Ipar"] = ipar
 
 
 def _scale(raw: RawNetlist, name: str, key: str, rel: str) -> None:
     """Scale a component's value by (1 + rel), ``rel`` a new parameter (null 0)."""
     e = raw.component_entry(name)
-    value = e[key]
-    e[key] = f"{float(value)!r}*(1 + {rel})" if isinstance(value, (int, float)) else \
-        f"({value})*(1 + {rel})"
+    e[key] = f"{_operand(raw, e[key], f'{rel}_0')}*(1 + {rel})"
+
+
+def _operand(raw: RawNetlist, value: Any, pname: str) -> str:
+    """A component's value as an operand of a value expression: a number in SI, a parameter
+    name as it is, anything else (a value with its unit, ``2e-3 kg*m^2``, which arithmetic
+    cannot hold) under a new parameter ``pname`` of its own."""
+    if isinstance(value, (int, float)):
+        return repr(float(value))
+    text = str(value).strip()
+    if text in raw.params:
+        return text
+    raw.params[pname] = (text, SourceLoc(raw.path or "<patch>"))
+    return pname
 
 
 def _drift(raw: RawNetlist, name: str, alpha: str) -> None:
