@@ -109,6 +109,16 @@ def refit_trial(setup: Setup, state: ModelState, candidates: Sequence[Any],
         except CircuitsimError as exc:
             setup.log(f"  refit of {' + '.join(c.key for c in candidates)} failed: {exc}")
             return None
+    if not fit.success:
+        # stopped by its budget, not converged: a trial judged there could lose to a rival
+        # by what the fit had still to gain. It goes on from there on the waveform (the
+        # slow stage has placed it; no phase is left to slide)
+        try:
+            more = refit(setup, model, free, dict(fit.params), bounds, nfev=20)
+        except CircuitsimError:
+            more = None
+        if more is not None and weighted_sse(setup, more) < weighted_sse(setup, fit):
+            fit = more
     return Trial(tuple(candidates), fit)
 
 

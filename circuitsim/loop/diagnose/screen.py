@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import re
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any
@@ -70,13 +71,23 @@ def propose(setup: Setup, state: ModelState, orders: Mapping[str, list[int]],
     t = np.asarray(setup.record.t, float)
     for c in effects.candidates(build(state.raw), orders, probes or setup.probes,
                                 duration=float(t[-1] - t[0])):
-        if c.key in tried or c.kind in chosen:
+        if c.key in tried or c.kind in chosen or (c.retunes and _freed(state.raw, c, setup)):
             continue
         order = c.fixed.get("order")
         same = order is not None and int(order) in declared.get(
             ("cogging" if c.effect == "unbalance" else c.effect, c.target), set())
         out.append(Proposal(c, same or c.retunes))
     return out
+
+
+def _freed(raw, candidate, setup: Setup) -> bool:
+    """Whether the value a re-tuning candidate scales reads a parameter the user frees
+    already (EMPS's mass M): the fit moves it, and a second handle on it is degenerate."""
+    from circuitsim.loop.effects import INERTIAS
+
+    entry = raw.component_entry(candidate.target)
+    value = str(entry.get(INERTIAS.get(str(entry.get("type")), ""), ""))
+    return bool(set(re.findall(r"[A-Za-z_]\w*", value)) & set(setup.declared))
 
 
 Projector = Callable[[Any], np.ndarray]
