@@ -357,7 +357,6 @@ def _backlash(raw: RawNetlist, name: str, gap: str) -> None:
     e = raw.component_entry(name)
     e["type"] = "backlash"
     e["gap"] = gap
-    e.setdefault("d", 0.0)
 
 
 def _sensors(probes: Sequence[str] | Mapping[str, str]) -> list[Candidate]:

@@ -157,11 +157,11 @@ def angle_locked(model) -> bool:
     states, pattern = meta.get("states"), meta.get("fy_pattern")
     if not angles or states is None or pattern is None:
         return bool(angles)  # no pattern to tell by: assume the ripple is there
-    cols = [states.index(a) for a in angles if a in states]
+    cols = {states.index(a) for a in angles if a in states}
     # an angle's own row (phi' = w) has no entry in dF/dphi: any entry is a law of the angle
-    if not any(int(c) in set(cols) for c in pattern[1]):
+    if not any(int(c) in cols for c in pattern[1]):
         return False
-    return not _twist_only(model, cols)
+    return not _twist_only(model, sorted(cols))
 
 
 def _twist_only(model, cols: Sequence[int]) -> bool:

@@ -188,7 +188,7 @@ def _screen_round(setup: Setup, state: ModelState, log: dict[str, Any]) -> list[
     # it was measured in will not pass after a refit either; the rest are ranked by the share
     # of their own space's residual they explain (a speed effect seen in slow features and a
     # ripple seen in the waveform compare as shares, not as sums of squares)
-    out = [s for s in out if _score(s) > BIC_MARGIN]
+    out = [s for s in out if promise(s) > BIC_MARGIN]
     out.sort(key=lambda s: -s.share)
     # the starts of one shape (a Stribeck speed, a warm-up time) are one effect: the refit of
     # the best-screened start moves the shape; the others would repeat it
@@ -233,9 +233,6 @@ def _distinct(state: ModelState, proposals: list, log: dict[str, Any]) -> list:
     return out
 
 
-_score = promise
-
-
 def _near_ties(screens: list[Screen], top: int) -> list[Screen]:
     """Neighbouring orders of one harmonic effect score alike when the speed changes through
     the record: the linear screen cannot rank such near-ties, so the refit gets all of them."""
@@ -246,7 +243,7 @@ def _near_ties(screens: list[Screen], top: int) -> list[Screen]:
         if "order" in c.fixed and any(
                 h.proposal.candidate.effect == c.effect and h.proposal.candidate.target ==
                 c.target and abs(h.proposal.candidate.fixed.get("order", -9) -
-                                 c.fixed["order"]) <= 1 and _score(s) >= 0.8 * _score(h)
+                                 c.fixed["order"]) <= 1 and promise(s) >= 0.8 * promise(h)
                 for h in head):
             out.append(s)
     return out

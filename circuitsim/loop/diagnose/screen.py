@@ -158,8 +158,9 @@ def screen_many(setup: Setup, state: ModelState, proposals: list[Proposal],
     one compile and one integration of 1 + (their free parameters) members replace one of
     each per candidate. ``projector`` may give alternative projections in order of
     preference (slow features, then the waveform): each is scored from the same runs, and the
-    first whose promise pays ``margin`` (the BIC margin) is kept. A candidate whose step leaves the linear range is re-stepped alone in
-    the joint model; when the joint model cannot be built or run, each is screened alone.
+    first whose promise pays ``margin`` (the BIC margin) is kept. A candidate whose step
+    leaves the linear range is re-stepped alone in the joint model; when the joint model
+    cannot be built or run, each is screened alone.
     """
     joint = [p for p in proposals if p.candidate.effect not in SENSOR_LAWS
              and not p.candidate.grid]
