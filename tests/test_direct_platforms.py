@@ -161,11 +161,11 @@ def test_the_checked_fields_are_the_ones_the_kernels_read():
     """check_layouts compares the offsets written into codegen's field intrinsics, no others."""
     import re
 
-    from circuitsim.compiler.codegen import _KERNEL_HEADER
+    from circuitsim.solve.kernel_lib import SOURCE as _KERNEL_LIB
 
     read = {(int(offset), "ptr" if pointer else "int") for offset, pointer in re.findall(
-        r"_band_field\((\d+), ir\.IntType\(\d+\)(\.as_pointer\(\))?\)", _KERNEL_HEADER)}
-    assert "ir.Constant(ir.IntType(64), 8)" in _KERNEL_HEADER  # data_of: pointer at 8
+        r"_band_field\((\d+), ir\.IntType\(\d+\)(\.as_pointer\(\))?\)", _KERNEL_LIB)}
+    assert "ir.Constant(ir.IntType(64), 8)" in _KERNEL_LIB  # data_of: pointer at 8
     read.add((8, "ptr"))
     assert read == {(offset, width) for _kind, offset, width, _name in sundials_libs.FIELDS}
 

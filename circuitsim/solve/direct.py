@@ -3,8 +3,9 @@
 scikit-sundae calls the model through a Python callback, about 4.5 µs a call on top of the
 residual's own arithmetic; that wrapper, not IDA, is most of a small model's solve. With numba
 installed and ``CIRCUITSIM_KERNELS=numba`` set, a model whose generated module carries kernels
-(``codegen._kernels``: the residual and the dense Jacobian as numba ``cfunc``s and the loop over
-the output times, compiled once and kept by numba beside the model in the cache folder) is
+(``codegen._kernels``: the residual and the dense Jacobian as numba ``cfunc``s, compiled when a
+solve first asks for them and kept by numba beside the model in the cache folder; the loop over
+the output times, shared by every topology, is compiled once) is
 integrated by the same IDA, scikit-sundae's bundled SUNDIALS libraries loaded with ctypes, with
 the same options: the same steps and the same numbers, to the bit, many times faster
 (``benchmarks/bench_compiled_route.py``). Importing numba and loading the kernels costs about
@@ -78,12 +79,48 @@ def _libraries() -> dict[str, Any]:
 _LOADED: dict[str, Any] = {}
 
 
+def _trusted_file(folder: Path, name: str, source: str) -> Path:
+    """``name``.py in the cache folder holding ``source`` (written when absent or different)."""
+    path = folder / f"{name}.py"
+    if not path.exists() or path.read_text(encoding="utf-8") != source:
+        from circuitsim.files import atomic_write
+
+        atomic_write(path, source)
+    return path
+
+
+def _import(name: str, path: Path) -> Any:
+    """The module at ``path`` under ``name``, registered before it runs: numba's kept code
+    names the module's helpers by module name."""
+    if name in sys.modules:
+        return sys.modules[name]
+    spec = importlib.util.spec_from_file_location(name, path)
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[name] = module
+    try:
+        spec.loader.exec_module(module)
+    except BaseException:
+        del sys.modules[name]
+        raise
+    return module
+
+
+def _kernel_lib(folder: Path) -> Any:
+    """The helpers every topology's kernels import (``kernel_lib.SOURCE``): one file a
+    version, so numba compiles the output loop and the tables' lookup once, not per topology."""
+    from circuitsim.solve import kernel_lib
+
+    name = kernel_lib.KERNEL_LIB
+    return _import(name, _trusted_file(folder, name, kernel_lib.SOURCE))
+
+
 def kernels(model) -> Any | None:
     """The model's compiled kernels (a module with ``residual`` and ``jacobian``), or None.
 
     The kernel source comes from the hash-checked cache entry; it is written beside it as a
     file so that numba can keep the machine code (in the folder's ``__pycache__``) for the next
-    process. Only a folder the model cache trusts is used."""
+    process. Only a folder the model cache trusts is used. Its cfuncs are compiled when first
+    asked for (``cfunc``)."""
     from circuitsim.memo import open_cache_dir
 
     source = model.meta.get("kernels")
@@ -94,18 +131,23 @@ def kernels(model) -> Any | None:
     folder, why = open_cache_dir()
     if why is not None:
         return None
-    path = folder / f"{model.key}_kernels.py"
-    if not path.exists() or path.read_text(encoding="utf-8") != source:
-        from circuitsim.files import atomic_write
-
-        atomic_write(path, source)
-    spec = importlib.util.spec_from_file_location(f"circuitsim_kernels_{model.key}", path)
-    module = importlib.util.module_from_spec(spec)
-    # registered first: numba's cached code names the module's own helpers by module name
-    sys.modules[spec.name] = module
-    spec.loader.exec_module(module)
+    _kernel_lib(folder)
+    name = f"circuitsim_kernels_{model.key}"
+    module = _import(name, _trusted_file(folder, f"{model.key}_kernels", source))
     _LOADED[model.key] = module
     return module
+
+
+def cfunc(module, name: str) -> Any:
+    """The kernel ``name`` of a kernel module as a numba cfunc of its signature (compiled, or
+    loaded from numba's kept code, on the first request; then held by the module)."""
+    held = module.__dict__.setdefault("_COMPILED", {})
+    if name not in held:
+        import numba
+
+        sig = getattr(module, module.CFUNCS[name])
+        held[name] = numba.cfunc(sig, cache=True, error_model="numpy")(getattr(module, name))
+    return held[name]
 
 
 class DirectIDA:
@@ -173,17 +215,17 @@ class DirectIDA:
         """The user data (the parameters; for a batch K, then each member's; for a large
         model its CSR arrays after them) and the two kernels. At least one entry: the kernels
         read p[0] when a model has none."""
-        m = self.module
+        residual, jacobian = (cfunc(self.module, name) for name in _used(self.kind))
         if self.data is not None:
-            jac = m.jacobian_sparse if self.kind == "sparse" else m.jacobian
-            return self.data, m.residual, jac
+            return self.data, residual, jacobian
         if self.members is None:
             p = list(self.opts["userdata"])
-            return np.array(p + [0.0] * (not p), dtype=float), m.residual, m.jacobian
+            return np.array(p + [0.0] * (not p), dtype=float), residual, jacobian
         data = [float(len(self.members))] + [v for q in self.members for v in q]
-        return np.array(data, dtype=float), m.residual_batch, m.jacobian_band
+        return np.array(data, dtype=float), residual, jacobian
 
     def _run(self, lib, h: dict, tspan: np.ndarray) -> Result:
+        from circuitsim.solve import kernel_lib
         from circuitsim.solve.sundae import ida_messages
 
         ida, n = lib["ida"], h["n"]
@@ -202,7 +244,7 @@ class DirectIDA:
         for end in ends:
             ida.IDASetStopTime(h["mem"], float(times[end]))
             # the loop over the output times is compiled too (2 µs an output time in Python)
-            k, flag = h["module"].outputs(
+            k, flag = sys.modules[kernel_lib.KERNEL_LIB].outputs(
                 h["mem"].value, h["yy"], h["yp"], times[done - 1:end + 1], h["Y"], h["YP"],
                 out_t[done - 1:], out_y[done - 1:], out_yp[done - 1:])
             done += k - 1
@@ -247,6 +289,8 @@ def ida_for(opts: dict) -> DirectIDA | None:
             data = _large_data(module, model, opts["userdata"])
         elif kind is not None and members is None and hasattr(module, "TABLES"):
             data = _table_data(model, opts["userdata"])
+        for name in _used(kind) if kind is not None else ():
+            cfunc(module, name)  # compiled here, where a failure means the Python route
     except Exception as exc:  # noqa: BLE001 - numba and the libraries fail in many ways
         _LOADED[model.key] = None
         _warn_once(exc)
@@ -273,6 +317,12 @@ def _warn_once(exc: Exception) -> None:
     if message not in _WARNED:
         _WARNED.add(message)
         warnings.warn(message, CircuitWarning, stacklevel=4)
+
+
+def _used(kind: str) -> tuple[str, str]:
+    """The residual and Jacobian kernels IDA calls with the linear solver ``kind``."""
+    return {"dense": ("residual", "jacobian"), "sparse": ("residual", "jacobian_sparse"),
+            "band": ("residual_batch", "jacobian_band")}[kind]
 
 
 def _kind(module, model, members, linsolver: str | None) -> str | None:

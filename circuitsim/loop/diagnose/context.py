@@ -76,9 +76,13 @@ class ModelState:
 
 
 def compile_raw(raw):
-    """Compile a (patched) raw netlist; the cache makes a repeated topology cheap."""
+    """Compile a (patched) raw netlist; the cache makes a repeated topology cheap (and the
+    worker compiling ahead may have filled it: ``solve/ahead.py``)."""
     from circuitsim.compiler.model import compile as compile_model
     from circuitsim.netlist.load import build
+    from circuitsim.solve import ahead
+
+    ahead.claim(raw)
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")

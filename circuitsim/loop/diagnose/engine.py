@@ -53,6 +53,8 @@ from circuitsim.loop.diagnose.screen import (
     propose,
     screen_many,
 )
+from circuitsim.loop.effects import candidates
+from circuitsim.solve import ahead
 
 SCREEN_TOP = 3  # candidates refitted with full simulation per round
 MAX_COMBINATIONS = 10  # joint swaps tried after an acceptance
@@ -108,6 +110,7 @@ def fit_declared(netlist, record, free, probes, params, rtol, max_effects, progr
     if net.raw is None:
         raise DiagnosisError("this netlist has no raw form to patch; load it from a file")
     model = compile_raw(net.raw)
+    _expect_grid(net.raw)
     names = tuple(probes or [p for p in model.probe_names if p in record.names])
     if not names:
         raise DiagnosisError(f"the record {record.path} has no column named like a probe of "
@@ -127,6 +130,15 @@ def fit_declared(netlist, record, free, probes, params, rtol, max_effects, progr
     setup.log(f"declared fit: error {fit0.error:.4g}")
     return setup, ModelState(net.raw, model, list(free), dict(fit0.params), fit0, {}, [],
                              net.raw)
+
+
+def _expect_grid(raw) -> None:
+    """The grid-screened candidates' topologies are the first the next round compiles alone:
+    a worker may compile them ahead (``solve/ahead.py``) while this process fits."""
+    from circuitsim.netlist.load import build
+
+    if ahead.enabled():
+        ahead.expect([c.apply(raw) for c in candidates(build(raw)) if c.grid], replace=True)
 
 
 def _spread(x) -> float:
@@ -158,6 +170,7 @@ def search(setup: Setup, state: ModelState, screen_top: int, clock: dict[str, fl
         if winner is None:
             break
         state = _accept(setup, state, winner, log)
+        _expect_grid(state.raw)
         state = _backward(setup, _swap(setup, state, log), log)
         # with another effect in place, what was rejected may now be needed (an offset that
         # only shows once the friction is there): every candidate is open again
@@ -255,6 +268,11 @@ def _refit_round(setup: Setup, state: ModelState, screens: list[Screen],
     passes alone, the best two together. Each trial comes with the keys of its candidates
     that re-tune a declared term (corrections)."""
     trials: list[tuple[Trial, frozenset[str]]] = []
+    raws = [s.proposal.candidate.apply(state.raw) for s in screens if s.model is None]
+    if len(screens) >= 2:
+        raws.append(screens[1].proposal.candidate.apply(screens[0].proposal.candidate.apply(
+            state.raw)))
+    ahead.expect(raws, replace=True)  # compiled ahead in the order of the refits
     for s in screens:
         c = s.proposal.candidate
         setup.log(f"refitting {c.key}")

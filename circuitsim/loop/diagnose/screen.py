@@ -32,6 +32,7 @@ from circuitsim.loop.diagnose.context import (
     simulate_many,
     weighted,
 )
+from circuitsim.solve import ahead
 
 
 @dataclass(frozen=True)
@@ -165,6 +166,11 @@ def screen_many(setup: Setup, state: ModelState, proposals: list[Proposal],
     joint = [p for p in proposals if p.candidate.effect not in SENSOR_LAWS
              and not p.candidate.grid]
     rest = [p for p in proposals if p not in joint]
+    # compiled ahead where a second core can, while this process compiles the joint model:
+    # the grid-screened topologies, needed next (not the candidates' own: which of them the
+    # refits need is known after the screen, and a guess would compete with this process)
+    ahead.expect([p.candidate.apply(state.raw) for p in rest if p.candidate.grid],
+                 replace=True)
     runs, model, members = _joint_runs(setup, state, joint) if len(joint) > 1 else (None,) * 3
     if runs is None:
         rest, joint = proposals, []
@@ -231,17 +237,22 @@ def _null_params(state: ModelState, proposals: list[Proposal]) -> dict[str, floa
                                for k, v in p.candidate.free.items()}}
 
 
+def _joint_raw(state: ModelState, proposals: list[Proposal]):
+    """The current netlist with every proposal's patch applied (at their null values)."""
+    raw = state.raw
+    for p in proposals:
+        raw = p.candidate.apply(raw)
+    return raw
+
+
 def _joint_runs(setup: Setup, state: ModelState, proposals: list[Proposal]
                 ) -> tuple[list | None, Any, dict[str, int]]:
     """The joint model's base run and one step of each free parameter, batched: (runs, model,
     index of each parameter's run), or Nones when it cannot be built or its base fails."""
     from circuitsim.errors import CircuitsimError
 
-    raw = state.raw
     try:
-        for p in proposals:
-            raw = p.candidate.apply(raw)
-        model = compile_raw(raw)
+        model = compile_raw(_joint_raw(state, proposals))
     except (CircuitsimError, KeyError, ValueError):
         return None, None, {}
     base = _null_params(state, proposals)

@@ -1,0 +1,125 @@
+"""Topologies compiled ahead in a worker process (``solve/ahead.py``): the worker fills the
+cache the caller reads, a claim takes a queued topology back, a failing job ends, a warm
+cache or ``CIRCUITSIM_AHEAD=off`` starts no worker, and the numbers do not depend on who
+compiled."""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+import pytest
+
+pytest.importorskip("numba")
+
+import circuitsim as cs
+from circuitsim.solve import ahead, direct
+
+RC = """
+title: RC {tag}
+components:
+  - {{name: V1, type: V, p: in, n: gnd, V: {{step: {{v0: 0, v1: 1 V, t0: 0, rise: 1 ns}}}}}}
+  - {{name: R{tag}, type: R, p: in, n: out, R: 1 kohm}}
+  - {{name: C1, type: C, p: out, n: gnd, C: 1 uF}}
+{extra}
+probes:
+  v_out: out.v
+analysis: {{stop: 4 ms, step: 10 us}}
+"""
+
+
+@pytest.fixture
+def fresh(tmp_path, monkeypatch, write_netlist):
+    """A cache folder of its own, kernels on, and a raw netlist maker: one topology a tag
+    (the resistor's name), so that no test meets kernels this process loaded for another."""
+    monkeypatch.setenv("CIRCUITSIM_CACHE", str(tmp_path / "cache"))
+    monkeypatch.setenv("CIRCUITSIM_KERNELS", "numba")
+    monkeypatch.delenv("CIRCUITSIM_AHEAD", raising=False)
+    if not ahead.enabled():
+        pytest.skip("compiling ahead needs two cores")  # the machine has one: it is off
+
+    def raw(tag: str, extra: str = ""):
+        return cs.load(write_netlist(RC.format(tag=tag, extra=extra), f"{tag}.yaml")).raw
+
+    yield raw
+    ahead._close()
+    ahead._WORKER.clear()
+
+
+def _wait_done(raw, timeout: float = 120.0) -> bool:
+    worker = ahead._WORKER[0]
+    key = ahead._key(raw)
+    with worker.cond:
+        return worker.cond.wait_for(lambda: key in worker.done or not worker.alive, timeout)
+
+
+def _compiled(raw):
+    from circuitsim.loop.diagnose.context import compile_raw
+
+    return compile_raw(raw)
+
+
+def test_the_worker_fills_the_cache_the_caller_reads(fresh, monkeypatch):
+    raw = fresh("a")
+    assert not ahead._kept(raw, direct_cache())
+    ahead.expect([raw])
+    assert _wait_done(raw) and ahead._WORKER[0].alive
+    assert ahead._kept(raw, direct_cache())  # numba keeps the worker's kernels
+    model = _compiled(raw)
+    module = direct.kernels(model)
+    kernels = [direct.cfunc(module, name) for name in module.CFUNCS]
+    # read from the cache, not compiled here
+    assert all(k.cache_hits for k in kernels)
+    # the same numbers as the Python route (the kernels give them to the bit)
+    with_kernels = model.simulate()
+    monkeypatch.setenv("CIRCUITSIM_KERNELS", "python")
+    plain = model.simulate()
+    assert with_kernels.success and np.array_equal(with_kernels.y, plain.y)
+
+
+def direct_cache():
+    from circuitsim.memo import cache_dir
+
+    return cache_dir()
+
+
+def test_a_claim_takes_a_queued_topology_back(fresh):
+    first, second, third = fresh("b1"), fresh("b2", "  - {name: R2, type: R, p: out, n: gnd, "
+                                                     "R: 1 Mohm}"), fresh("b3")
+    ahead.expect([first, second, third])
+    worker = ahead._WORKER[0]
+    ahead.claim(third)
+    with worker.cond:
+        assert ahead._key(third) not in [k for k, _ in worker.queue]
+        assert worker.running == ahead._key(first)  # one job at a time, in order
+    assert _wait_done(second)
+    assert ahead._key(third) not in worker.done
+
+
+def test_a_job_that_cannot_compile_ends(fresh):
+    # two voltage sources in parallel: the netlist builds, its model does not
+    bad = fresh("c", "  - {name: V2, type: V, p: in, n: gnd, V: 2 V}")
+    good = fresh("c2")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        ahead.expect([bad, good])
+    assert _wait_done(bad) and _wait_done(good)
+    assert ahead._WORKER[0].alive
+    assert ahead._kept(good, direct_cache())
+
+
+def test_a_warm_cache_starts_no_worker(fresh):
+    raw = fresh("d")
+    model = _compiled(raw)
+    module = direct.kernels(model)
+    for name in module.CFUNCS:
+        direct.cfunc(module, name)
+    ahead.expect([raw])
+    assert not ahead._WORKER or ahead._WORKER[0] is None
+
+
+def test_off_starts_no_worker(fresh, monkeypatch):
+    monkeypatch.setenv("CIRCUITSIM_AHEAD", "off")
+    ahead.expect([fresh("e")])
+    assert not ahead._WORKER or ahead._WORKER[0] is None
+
