@@ -33,8 +33,13 @@ from typing import Any
 WAIT = 120.0
 
 
-def _key(raw) -> str:
-    return hashlib.sha256(pickle.dumps(raw, protocol=4)).hexdigest()
+def _key(raw) -> str | None:
+    """The job's name: its pickle's hash (None for a netlist that cannot be pickled: it is
+    compiled where it is needed, as without a worker)."""
+    try:
+        return hashlib.sha256(pickle.dumps(raw, protocol=4)).hexdigest()
+    except (pickle.PicklingError, TypeError, AttributeError, RecursionError):
+        return None
 
 
 class _Worker:
@@ -98,13 +103,15 @@ class _Worker:
             queued = {k for k, _ in self.queue}
             for raw in raws:
                 key = _key(raw)
-                if key not in self.done and key != self.running and key not in queued:
+                if key is not None and key not in self.done and key != self.running and key not in queued:
                     self.queue.append((key, raw))
                     queued.add(key)
             self._next()
 
     def claim(self, raw) -> None:
         key = _key(raw)
+        if key is None:
+            return
         with self.cond:
             self.queue = [(k, r) for k, r in self.queue if k != key]
             # a job the worker still checks (or imports for) is not waited for: the caller
