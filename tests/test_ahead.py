@@ -123,3 +123,16 @@ def test_off_starts_no_worker(fresh, monkeypatch):
     ahead.expect([fresh("e")])
     assert not ahead._WORKER or ahead._WORKER[0] is None
 
+
+
+def test_a_dead_worker_is_not_started_again(fresh):
+    raw = fresh("f")
+    ahead.expect([raw])
+    worker = ahead._WORKER[0]
+    worker.proc.kill()
+    with worker.cond:
+        assert worker.cond.wait_for(lambda: not worker.alive, 30)
+    ahead.expect([fresh("g")])
+    assert ahead._WORKER[0] is worker and not worker.alive
+    ahead.claim(raw)  # returns at once: nothing is compiling
+    assert _compiled(raw).key  # compiled here instead

@@ -134,14 +134,15 @@ _WORKER: list[_Worker | None] = []
 
 
 def _worker() -> _Worker | None:
-    """The process's worker, started at the first use (again when the cache folder changed
-    or it died); None when compiling ahead is off or the folder is not trusted."""
+    """The process's worker, started at the first use (again when the cache folder changed);
+    None when compiling ahead is off, the folder is not trusted, or the worker died (it is
+    not started again for that folder: whatever killed it would again)."""
     from circuitsim.memo import open_cache_dir
 
     folder, why = open_cache_dir()
     old = _WORKER[0] if _WORKER else None
-    if old is not None and old.folder == folder and old.alive:
-        return old
+    if old is not None and old.folder == folder:
+        return old if old.alive else None
     if old is not None:
         old.close()
     _WORKER[:] = [None]
