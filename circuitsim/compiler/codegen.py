@@ -407,11 +407,11 @@ def _shared_kernels(F: list, jac_exprs: list, pattern: list, n: int, n_par: int,
             f"    y, d = {vec.format('yy', f'K * {n}')}, {vec.format('ypv', f'K * {n}')}",
             f"    p = carray(ud, 1 + K * {n_par}, dtype=numpy.float64)"]
     member = f"    for k in range(K):\n        o, q = k * {n}, 1 + k * {n_par}"
-    src = _member_body("_residual_at", "t, y, d, p, r, o, q", F, [f"r[o + {i}]" for i in range(n)],
-                n, n_par, scalar)
+    src = _member_body("_residual_at", "t, y, d, p, r, o, q", F,
+                       [f"r[o + {i}]" for i in range(n)], n, n_par, scalar)
     src += _member_body("_jacobian_at", "t, cj, y, d, p, a, base, sj, o, q", jac_exprs,
-                 [f"a[base + {i} + {j} * sj]" if j else f"a[base + {i}]" for i, j in pattern],
-                 n, n_par, scalar)
+                        [f"a[base + {i} + {j} * sj]" if j else f"a[base + {i}]"
+                         for i, j in pattern], n, n_par, scalar)
     zero = "numpy.int64(0)"  # one type for the bodies' offsets, single and batched alike
     src += _wrapper("residual", "RES", "t, yy, ypv, rr, ud",
                     [*one, f"    r = {vec.format('rr', n)}",
@@ -432,17 +432,23 @@ def _shared_kernels(F: list, jac_exprs: list, pattern: list, n: int, n_par: int,
 
 
 def _member_body(name: str, args: str, exprs: list, targets: list[str], n: int, n_par: int,
-          scalar) -> list[str]:
+                 scalar) -> list[str]:
     """An njit body of one member (states from offset ``o``, parameters from ``q``)."""
+    return ["", "", '@njit(cache=True, error_model="numpy")', f"def {name}({args}):",
+            *_assignments(exprs, targets, n, n_par, scalar, "o + ", "q + "), "    return 0"]
+
+
+def _assignments(exprs: list, targets: list[str], n: int, n_par: int, scalar, o: str = "",
+                 q: str = "") -> list[str]:
+    """A kernel's statements: the states, derivatives and parameters the expressions use,
+    read at offsets ``o`` and ``q`` (a batch member's), then the assignments to ``targets``."""
     from circuitsim.component import as_expr
 
     used = {str(s) for e in exprs for s in as_expr(e).free_symbols}
-    body = [f"    y{k} = y[o + {k}]" for k in range(n) if f"y{k}" in used]
-    body += [f"    yp{k} = d[o + {k}]" for k in range(n) if f"yp{k}" in used]
-    body += [f"    p{k} = p[q + {k}]" for k in range(n_par) if f"p{k}" in used]
-    body += [_libm_powers(line) for line in _block(exprs, scalar, "    ", targets)]
-    return ["", "", '@njit(cache=True, error_model="numpy")', f"def {name}({args}):", *body,
-            "    return 0"]
+    body = [f"    y{k} = y[{o}{k}]" for k in range(n) if f"y{k}" in used]
+    body += [f"    yp{k} = d[{o}{k}]" for k in range(n) if f"yp{k}" in used]
+    body += [f"    p{k} = p[{q}{k}]" for k in range(n_par) if f"p{k}" in used]
+    return body + [_libm_powers(line) for line in _block(exprs, scalar, "    ", targets)]
 
 
 def _wrapper(name: str, sig: str, args: str, lines: list[str]) -> list[str]:
@@ -582,15 +588,7 @@ def _chunked(name: str, sig: str, args: str, exprs: list, targets: list[str], pr
 def _kernel(name: str, sig: str, args: str, exprs: list, targets: list[str], pre: list[str],
             n: int, n_par: int, scalar) -> list[str]:
     """One cfunc of one member: the arrays, the names the expressions use, the assignments."""
-    from circuitsim.component import as_expr
-
-    used = {str(q) for e in exprs for q in as_expr(e).free_symbols}
-    body = [f"    y{k} = y[{k}]" for k in range(n) if f"y{k}" in used]
-    body += [f"    yp{k} = d[{k}]" for k in range(n) if f"yp{k}" in used]
-    body += [f"    p{k} = p[{k}]" for k in range(n_par) if f"p{k}" in used]
-    body += [_libm_powers(line) for line in _block(exprs, scalar, "    ", targets)]
-    return ["", "", f"def {name}({args}):", *pre, *body, "    return 0", "",
-            f"CFUNCS[{name!r}] = {sig!r}"]
+    return _wrapper(name, sig, args, [*pre, *_assignments(exprs, targets, n, n_par, scalar)])
 
 
 def generate(dae) -> tuple[str, dict[str, Any]]:

@@ -167,8 +167,14 @@ def enabled() -> bool:
 
     if os.environ.get("CIRCUITSIM_AHEAD", "").strip().lower() in ("0", "off", "no"):
         return False
-    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
-    return (cores or 1) >= 2 and wanted()
+    return _cores() >= 2 and wanted()
+
+
+def _cores() -> int:
+    """The cores this process may run on."""
+    if hasattr(os, "sched_getaffinity"):
+        return len(os.sched_getaffinity(0))
+    return os.cpu_count() or 1
 
 
 def expect(raws: Iterable[Any], replace: bool = False) -> None:
