@@ -137,6 +137,19 @@ def saturation(m, rg, ipar, ratio):
         "expected": {"Ipar": ipar, "ratio": ratio}}
 
 
+#: the declared armature inductance the supply's is in series with [H]
+L_DECLARED = {"A": 0.87e-3, "B": 1.2e-3, "C": 1.2e-3}
+
+
+def supply_inductance(m, rg, ls):
+    """An inductance ``ls`` [H] between the supply and the drive: in series with the
+    armature, it is the declared La off by ls / La, which the catalog reports as a
+    correction of La (not as a new cause)."""
+    return {"Ls": ls}, {
+        "effect": "inductance", "target": "La", "targets": ["La"], "correction": True,
+        "parameters": {"L_supply_H": ls}, "expected": {"dL": ls / L_DECLARED[m]}}
+
+
 def drift_linear(m, rg, alpha):
     return {"drift": ("linear", alpha)}, {
         "effect": "resistance-drift", "target": "Ra", "targets": ["Ra"],
@@ -304,7 +317,7 @@ def record_specs() -> list[dict]:
         by_class[s["class"]] = k
         s["split"] = "heldout" if k % 3 == 0 else "tune"
         s["seed"] = 1000 + S.index(s)
-    return S + fresh_specs() + fresh2_specs()
+    return S + fresh_specs() + fresh2_specs() + fresh3_specs()
 
 
 def fresh_specs() -> list[dict]:
@@ -383,6 +396,41 @@ def fresh2_specs() -> list[dict]:
     rec("g07", "catalog", lambda a: add(backlash(C, rg, a)), 0.008,
         probes=["current", "speed"],
         note="8 mrad of play; no load encoder: current and motor speed only")
+    return S
+
+
+def fresh3_specs() -> list[dict]:
+    """The blind set of the supply inductance (catalog entry ``inductance``, a correction of
+    the declared inductance it is in series with): written after that entry, before anyone
+    ran these records, and run once. Three motors, both regimes, one marginal, one with a
+    second effect, one null with coloured and quantised noise."""
+    S: list[dict] = []
+
+    def rec(rid, cls, motor, regime, build=None, amp=None, marginal=False, noise=None,
+            note=""):
+        S.append({"id": rid, "class": cls, "motor": motor, "regime": regime,
+                  "build": build or (lambda a: ({}, [])), "amp": amp, "marginal": marginal,
+                  "iters": 3, "noise": noise, "free": [], "note": note, "split": "fresh3",
+                  "seed": 4000 + len(S)})
+
+    rec("h01", "catalog", "A", "fast", lambda a: add(supply_inductance("A", "fast", a)), 0.2e-3,
+        note="0.2 mH of supply inductance before the varistor")
+    rec("h02", "catalog", "B", "slow", lambda a: add(supply_inductance("B", "slow", a)), 0.5e-3,
+        noise={"current": {"ar1": [3e-3, 0.8]}, "speed": {"white": 0.1}},
+        note="0.5 mH of supply inductance; AR(1) current noise, phi 0.8")
+    rec("h03", "catalog", "B", "fast", lambda a: add(supply_inductance("B", "fast", a)), 0.05e-3,
+        marginal=True, note="")
+    rec("h04", "catalog", "C", "reversing",
+        lambda a: add(supply_inductance("C", "reversing", a)), 0.4e-3,
+        noise={"current": {"white": 2e-3, "quant": 5e-3}, "speed": {"white": 0.05, "quant": 0.1},
+               "load_speed": {"white": 0.05}},
+        note="0.4 mH of supply inductance; ADC steps 5 mA and 0.1 rad/s")
+    rec("h05", "two", "B", "fast", lambda a: add(supply_inductance("B", "fast", 0.3e-3),
+                                                 brush_drop("B", "fast", 0.2)),
+        note="0.3 mH of supply inductance and a 0.2 V brush drop")
+    rec("h06", "null", "B", "slow", noise={"current": {"ar1": [3e-3, 0.9], "quant": 2e-3},
+                                           "speed": {"pink": 0.2}},
+        note="AR(1) current noise (phi 0.9) with 2 mA ADC steps; 1/f speed noise")
     return S
 
 

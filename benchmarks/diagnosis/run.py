@@ -119,6 +119,9 @@ def child(rid: str) -> int:
                                         if k in ("delta_bic", "explained_fraction", "what",
                                                  "revised")}}
                           for a in d.effects]
+        out["corrections"] = [{"effect": a.effect, "target": a.target,
+                               "parameters": dict(a.parameters), "stderr": dict(a.stderr)}
+                              for a in getattr(d, "corrections", [])]
         rem = dict(d.remaining)
         rem.pop("peaks", None)
         out["remaining"] = rem
@@ -219,36 +222,40 @@ def score(entry: dict, res: dict | None) -> dict:
     new = [a for a in acc if not _is_declared(a, entry["declared_terms"])]
     structure = bool(res.get("remaining", {}).get("structure"))
     truth = [] if entry["class"] in ("null", "outside") else entry["effects"]
+    # a declared value off (a supply inductance in series with La) is found as a correction
+    fixes = res.get("corrections") or []
     matches, used = [], set()
     for e in truth:
         labels = [e, *e.get("also_accept", [])]
         hit = None
-        for i, a in enumerate(new):
-            if i in used:
+        pool = fixes if e.get("correction") else new
+        for i, a in enumerate(pool):
+            if (i in used) and pool is new:
                 continue
             lab = next((lb for lb in labels if _label_match(a, lb)), None)
             if lab is not None:
                 hit = (i, a, lab)
                 break
         if hit is not None:
-            used.add(hit[0])
+            if pool is new:
+                used.add(hit[0])
             matches.append({"truth": e["effect"], "accepted": f"{hit[1]['effect']} on "
                             f"{hit[1]['target']}",
                             "errors": _param_errors(hit[1], hit[2].get("expected", {}),
                                                     res.get("final_fit"))})
     extra = [a for i, a in enumerate(new) if i not in used]
     missed = [e["effect"] for e in truth if e["effect"] not in {m["truth"] for m in matches}]
-    if not new:
-        verdict = "nothing+structure" if structure else "nothing"
-    elif not missed and not extra and truth:
+    if not missed and not extra and truth:
         verdict = "right"
+    elif not new:
+        verdict = "nothing+structure" if structure else "nothing"
     elif matches:
         verdict = "partial"
     else:
         verdict = "wrong"
     cls = entry["class"]
-    if cls == "null":
-        right = not new
+    if cls == "null":  # nothing is missing, and no declared value is off either
+        right = not new and not fixes
     elif cls == "outside":
         right = not new and structure
     else:
@@ -263,9 +270,9 @@ def score(entry: dict, res: dict | None) -> dict:
 
 # ----------------------------------------------------------------------- reporting
 
-def _fmt_effects(res: dict) -> str:
+def _fmt_effects(res: dict, key: str = "effects") -> str:
     out = []
-    for a in res.get("effects", []):
+    for a in res.get(key) or []:
         ps = ", ".join(f"{k.split('_')[-1] if k != 'order' else 'order'}={v:.4g}"
                        for k, v in a["parameters"].items() if isinstance(v, (int, float)))
         out.append(f"{a['effect']}@{a['target']}({ps})")
@@ -318,6 +325,8 @@ def report(entries: list[dict], title: str) -> tuple[int, int]:
             print(f"    FAILED  : {res.get('status')}: {res.get('error', '')[:300]}")
             continue
         print(f"    accepted: {_fmt_effects(res)}  (values when accepted)")
+        if res.get("corrections"):
+            print(f"    corrected declared values: {_fmt_effects(res, 'corrections')}")
         for m in sc["matches"]:
             errs = ", ".join(f"{k} {v:+.1%}" if k != "phase_rad" else f"phase {v:+.3f} rad"
                              for k, v in m["errors"].items())
@@ -379,7 +388,7 @@ def run_one(entry: dict, timeout: float, circuitsim_dir: str | None, niceness: i
 
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--split", choices=("tune", "heldout", "fresh", "fresh2", "all"),
+    ap.add_argument("--split", choices=("tune", "heldout", "fresh", "fresh2", "fresh3", "all"),
                     default="tune")
     ap.add_argument("--only", default="", help="record ids, comma-separated")
     ap.add_argument("--timeout", type=float, default=1200.0, help="per record [s]")
@@ -405,7 +414,7 @@ def main() -> int:
             print(f"diagnosing {e['id']} ...", flush=True)
             run_one(e, args.timeout, args.circuitsim, args.nice)
     totals = [0, 0]
-    for split in ("tune", "heldout", "fresh", "fresh2"):
+    for split in ("tune", "heldout", "fresh", "fresh2", "fresh3"):
         part = [e for e in sel if e["split"] == split]
         if part:
             r, n = report(part, split)

@@ -69,6 +69,10 @@ Effects of motors A and B (``fx`` dict, all optional; names are physical, SI uni
     torsion         (J2, ks, cs): a second inertia J2 on a compliant shaft (spring ks
                     [N m/rad], damping cs [N m s/rad]); the probe measures the motor side
                                                                                    [outside]
+    Ls              supply inductance [H] between the source and the rest of the circuit
+                    (motors A, B, C): the source's terminals see u - Ls di_supply/dt. On
+                    motor A the varistor branch sits behind it; its current (tens of nA)
+                    changes by under a nA through it and is taken as part of the loop's
     params          dict of declared parameters to override (declared-parameter error)
 Sensor effects (applied to the simulated probes, before noise; per probe):
     sensor          {probe: {"gain": g, "offset": c [SI], "delay": d [s]}}
@@ -218,7 +222,7 @@ def _rhs_factory(motor: str, fx: dict, u_fn):
         e0 = a8s = a8o = 0.0
         J, B = p["J"], p["b"]
         rv = cv = None
-    rs, rser = fx.get("Rs", 0.0), fx.get("Rser", 0.0)
+    rs, rser, ls = fx.get("Rs", 0.0), fx.get("Rser", 0.0), fx.get("Ls", 0.0)
     vb, vb_eps = fx.get("Vb", 0.0), fx.get("Vb_eps", 5e-3)
     tors = fx.get("torsion")
     load = (lambda t: p["T_load"] if t >= p["t_load"] else 0.0) if motor == "B" and \
@@ -229,7 +233,7 @@ def _rhs_factory(motor: str, fx: dict, u_fn):
         v = u_fn(t) + _supply_extra(fx, t)
         e = ke * w + e0 + (a8s * w + a8o) * math.sin(8 * th) + _emf_harm(fx, w, th)
         drop = (rs + _resistance(ra, fx, t) + rser) * i + vb * math.tanh(i / vb_eps)
-        di = (v - drop - e) / (_inductance(la, fx, i) + 2 * lc)
+        di = (v - drop - e) / (_inductance(la, fx, i) + 2 * lc + ls)
         tq = kt * i - B * w + _mech_extra(fx, t, w, th) - load(t)
         dw2 = ddl = 0.0
         if tors is not None:
@@ -238,13 +242,15 @@ def _rhs_factory(motor: str, fx: dict, u_fn):
             tq -= tshaft
             dw2 = tshaft / j2
             ddl = w - w2
-        dvc = 0.0 if rv is None else (v - vc) / (rv * cv)
+        dvc = 0.0 if rv is None else (v - ls * di - vc) / (rv * cv)
         return [di, tq / J, w, dvc, dw2, ddl]
 
     def probes(t, x):
         i, w = x[0], x[1]
         if motor == "A":
             v = np.array([u_fn(tt) + _supply_extra(fx, tt) for tt in t])
+            if ls:  # the varistor sees the source less the supply inductance's drop
+                v = v - ls * np.array([rhs(tt, x[:, k])[0] for k, tt in enumerate(t)])
             i_var = (v - x[3]) / rv
             return {"i_total": i + i_var, "speed": w}
         return {"current": i, "speed": w}
@@ -419,7 +425,7 @@ def _rhs_c(fx, u_fn):
     def rhs(t, x, mode):
         i, w1, w2, phi, th2 = x
         ts = tau(phi, w1 - w2, mode)
-        di = (u_fn(t) - rloop * i - p["k"] * w1) / p["L"]
+        di = (u_fn(t) - rloop * i - p["k"] * w1) / (p["L"] + fx.get("Ls", 0.0))
         dw1 = (p["k"] * i - p["b1"] * w1 - ts) / p["J1"]
         tl = ts - p["b2"] * w2 - fc2 * math.tanh(w2 / wc2) - t_load
         if ripple is not None:

@@ -22,7 +22,7 @@ from circuitsim.netlist.load import Netlist, RawNetlist
 CATALOG_IDS = ("series-resistance", "source-resistance", "brush-drop", "coulomb-friction",
                "stribeck-friction", "viscous-friction", "cogging", "unbalance", "emf-harmonic",
                "inductor-saturation", "resistance-drift", "force-offset", "sensor-gain",
-               "sensor-offset", "sensor-delay", "backlash", "inertia")
+               "sensor-offset", "sensor-delay", "backlash", "inertia", "inductance")
 
 
 @dataclass(frozen=True)
@@ -288,6 +288,10 @@ def _warmup(name: str, duration: float) -> list[Candidate]:
 
 #: declared inertias whose value a diagnosis may re-tune: (type, parameter)
 INERTIAS = {"inertia": "J", "mass": "m"}
+#: declared inductors whose value a diagnosis may re-tune: (type, parameter)
+INDUCTORS = {"L": "L", "inductor": "L"}
+#: every declared value a re-tuning candidate scales: (type, parameter)
+RETUNED = {**INERTIAS, **INDUCTORS}
 
 
 def _component_laws(net: Netlist, duration: float | None = None) -> list[Candidate]:
@@ -302,7 +306,16 @@ def _component_laws(net: Netlist, duration: float | None = None) -> list[Candida
                 f"the inertia of {c.name} off by a factor 1 + dJ (a body the netlist lacks)",
                 lambda r, n=c.name, p=p, k=INERTIAS[c.type]: _scale(r, n, k, p),
                 steps={p: 1e-3}, retunes=True))
-        if c.type in ("L", "inductor"):
+        if c.type in INDUCTORS:
+            # a supply or cable inductance in series carries the same current: it is this
+            # inductance off, as a wrong datasheet value is; a correction, not a new cause
+            p = _pname("inductance", c.name, "dL")
+            out.append(Candidate(
+                "inductance", c.name, {p: (0.0, -0.9, 10.0)}, {},
+                f"the inductance of {c.name} off by a factor 1 + dL (an inductance in series "
+                f"with it: the supply's or a cable's)",
+                lambda r, n=c.name, p=p, k=INDUCTORS[c.type]: _scale(r, n, k, p),
+                steps={p: 1e-3}, retunes=True))
             p = _pname("inductor-saturation", c.name, "Ipar")
             q = _pname("inductor-saturation", c.name, "ratio")
             out.append(Candidate(

@@ -84,10 +84,10 @@ def propose(setup: Setup, state: ModelState, orders: Mapping[str, list[int]],
 def _freed(raw, candidate, setup: Setup) -> bool:
     """Whether the value a re-tuning candidate scales reads a parameter the user frees
     already (EMPS's mass M): the fit moves it, and a second handle on it is degenerate."""
-    from circuitsim.loop.effects import INERTIAS
+    from circuitsim.loop.effects import RETUNED
 
     entry = raw.component_entry(candidate.target)
-    value = str(entry.get(INERTIAS.get(str(entry.get("type")), ""), ""))
+    value = str(entry.get(RETUNED.get(str(entry.get("type")), ""), ""))
     return bool(set(re.findall(r"[A-Za-z_]\w*", value)) & set(setup.declared))
 
 
