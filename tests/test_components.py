@@ -24,6 +24,8 @@ def test_torque_source_inertia_damper(compile_text):
     w = 200 * (1 - np.exp(-res.t / tau))
     assert rel_err(res["w"], w) < 1e-6
     assert rel_err(res["phi"], 200 * (res.t - tau * (1 - np.exp(-res.t / tau)))) < 1e-6
+    # ``in`` asks for a name (a probe, a variable), never for an index
+    assert "w" in res and "s.w" in res and "speeed" not in res and 0 not in res
 
 
 def test_mass_damper_force_source(compile_text):

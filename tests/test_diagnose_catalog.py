@@ -228,3 +228,34 @@ def test_a_load_the_netlist_lacks_is_a_correction_of_the_declared_inertia():
     final = {k: v["estimate"] for k, v in d.final_parameters().items()}
     assert final["inertia_Jr_dJ"] == pytest.approx(0.3, rel=0.05)
     assert d.error_after < 0.2 * d.error_before
+
+
+def test_a_supply_inductance_is_a_correction_of_the_inductance_it_is_in_series_with():
+    """0.25 mH of supply inductance written as a component of its own between the Kim
+    motor's source and the rest (so the record does not come from the patch): in series
+    with La, it is La off by 0.25/0.87, reported as a correction of La, not as a new cause
+    and not as a sensor's delay."""
+    m = MOTORS["kim"]
+    net = cs.load(m["netlist"])
+    raw = net.raw.copy()
+    src = raw.component_entry("Vin")
+    node, src["p"] = src["p"], "supply"
+    raw.comps.append(({"name": "Lsupply", "type": "L", "p": "supply", "n": node,
+                       "L": 0.25e-3}, raw.comps[0][1], raw.path))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        model = cs.compile(build(raw))
+    t = np.arange(round(m["stop"] * m["rate"]) + 1) / m["rate"]
+    fine = np.linspace(0.0, m["stop"], 5 * (t.size - 1) + 1)
+    res = model.simulate(stop=m["stop"], t_eval=fine, rtol=1e-10, atol=1e-12)
+    assert res.success, res.message
+    rng = np.random.default_rng(17)
+    rec = Record(t, {p: np.interp(t, fine, res[p]) + rng.normal(0.0, s, t.size)
+                     for p, s in m["noise"].items()}, "kim + supply inductance")
+    d = diagnose(net, rec)
+    assert not d.effects, d.summary()
+    (fix,) = d.corrections
+    assert (fix.effect, fix.target) == ("inductance", "La")
+    final = {k: v["estimate"] for k, v in d.final_parameters().items()}
+    assert final["inductance_La_dL"] == pytest.approx(0.25 / 0.87, rel=0.03)
+    assert d.error_after < 0.2 * d.error_before

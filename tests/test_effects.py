@@ -158,6 +158,8 @@ def test_effect_parameters_have_physical_bounds():
                 assert lo == 0.0, c.key
             if c.effect == "inductor-saturation" and name.endswith("ratio"):
                 assert 0.0 < lo and hi == 1.0, c.key
+            if c.effect in ("inertia", "inductance"):  # a scaled value stays positive
+                assert -1.0 < lo, c.key
 
 
 def test_warmup_patch_is_the_closed_form_and_exact_at_null(tmp_path):
@@ -243,8 +245,8 @@ def test_an_emf_harmonic_declares_its_order_on_its_shaft_too():
 def test_patches_that_scale_a_value_take_it_with_its_unit(tmp_path):
     """A value written with its unit (``2e-3 kg*m^2``, ``1 mH``) cannot sit inside
     arithmetic: the patch moves it into a parameter of its own and scales that. An inertia
-    doubled halves the acceleration of a torque step; a saturation at its null is the
-    declared inductor."""
+    doubled halves the acceleration of a torque step; an inductance doubled doubles the RL
+    time constant; a saturation at its null is the declared inductor."""
     path = tmp_path / "m.yaml"
     path.write_text("components:\n"
                     "  - {name: T1, type: torque, shaft: r, T: 1}\n"
@@ -255,13 +257,18 @@ def test_patches_that_scale_a_value_take_it_with_its_unit(tmp_path):
                     "probes: {w: r.w, i: L1.i}\n")
     net = cs.load(path)
     t = np.linspace(0.0, 0.01, 11)
+    seen = set()
     for c in effects.candidates(net):
-        if c.effect not in ("inertia", "inductor-saturation"):
+        if c.effect not in ("inertia", "inductance", "inductor-saturation"):
             continue
+        seen.add(c.effect)
         res = _compile(build(c.apply(net.raw))).simulate(
             stop=0.01, t_eval=t, params={next(iter(c.free)): 1.0} if c.retunes else None,
             rtol=1e-10, atol=1e-12)
-        if c.retunes:
+        if c.effect == "inertia":
             assert res["w"] == pytest.approx(t / 4e-3, rel=1e-9, abs=1e-12)
         else:
-            assert res["i"] == pytest.approx(1 - np.exp(-t / 1e-3), rel=1e-7, abs=1e-12)
+            tau = 2e-3 if c.retunes else 1e-3
+            assert res["i"] == pytest.approx(1 - np.exp(-t / tau), rel=1e-7, abs=1e-12)
+    assert seen == {"inertia", "inductance", "inductor-saturation"}
+    assert {c.effect: c.retunes for c in effects.candidates(net)}["inductance"]

@@ -55,6 +55,13 @@ SOURCE = {("A", "fast"): "Vin", ("B", "fast"): "Vin", ("B", "slow"): "U",
 # term and is not a new effect (it is reported, not scored)
 DECLARED = {"A": [{"effect": "emf-harmonic", "target": "M", "order": 8}], "B": [], "C": []}
 MARGINAL_SIGMA = 8.0
+#: scalar catalog effects a marginal record's truth is compared with (motors A and B), each
+#: at a size small enough for its imprint to be linear in it
+ALTERNATIVES = (
+    ("series-resistance", {"Rser": 1e-3}), ("brush-drop", {"Vb": 1e-3, "Vb_eps": 5e-3}),
+    ("coulomb-friction", {"Fc": 1e-5, "wc": 0.05}), ("viscous-friction", {"Bx": 1e-7}),
+    ("inductance", {"Ls": 1e-6}), ("resistance-drift", {"drift": ("linear", 1e-3)}),
+)
 
 
 # ---------------------------------------------------------------------- effect helpers
@@ -460,6 +467,30 @@ def signature(motor, regime, clean, probes=None) -> dict[str, float]:
             for p, s in WHITE[(motor, regime)].items() if probes is None or p in probes}
 
 
+def separations(spec, clean) -> dict[str, float]:
+    """How far a marginal record's truth is from each scalar alternative, in noise sigmas:
+    min over a of || imprint(truth) - a imprint(alternative) || (white sigmas per probe, the
+    alternatives' imprints linear at their small size). Below ~2 sigma no test can tell the
+    two apart from this record, whatever the method: the record is a tie by construction."""
+    motor, regime = spec["motor"], spec["regime"]
+    t, null = _grid(motor, regime), _null(motor, regime)
+    white = {p: s for p, s in WHITE[(motor, regime)].items() if p in probes_of(spec)}
+
+    def imprint(y):
+        return np.concatenate([(y[p] - null[p]) / s for p, s in white.items()])
+    truth = imprint(clean)
+    _, effects = spec["build"](spec["amp"])
+    own = {lab["effect"] for e in effects for lab in [e, *e.get("also_accept", [])]}
+    out = {}
+    for label, fx in ALTERNATIVES:
+        if label in own:
+            continue
+        alt = imprint(sims.simulate(motor, regime, t, fx))
+        a = float(truth @ alt / (alt @ alt))
+        out[label] = float(np.linalg.norm(truth - a * alt))
+    return out
+
+
 def probes_of(spec) -> list[str]:
     return list(spec.get("probes") or sims.PROBES[spec["motor"]])
 
@@ -562,6 +593,8 @@ def main() -> int:
         t0 = time.perf_counter()
         _fx, effects, clean, sig = build(spec)
         entry = truth_entry(spec, effects, sig)
+        if spec["marginal"] and spec["class"] == "catalog" and spec["motor"] in ("A", "B"):
+            entry["separation_sigma"] = separations(spec, clean)
         truth[spec["id"]] = entry
         if not args.truth_only:
             rng = np.random.default_rng(spec["seed"])

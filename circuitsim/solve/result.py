@@ -90,6 +90,17 @@ class SimResult:
             self._obs[name] = np.broadcast_to(np.asarray(v, float), (len(self.t),)).copy()
         return self._obs[name]
 
+    def __contains__(self, name: object) -> bool:
+        """Whether ``name`` is a probe, an observable or a state of this run (``in``
+        otherwise falls back to item access by integer index)."""
+        if not isinstance(name, str):
+            return False
+        try:
+            self[name]
+        except KeyError:
+            return False
+        return True
+
     def __getitem__(self, name: str) -> np.ndarray:
         got = self._observed(name)
         if got is not None:

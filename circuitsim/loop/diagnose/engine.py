@@ -203,6 +203,7 @@ def _screen_round(setup: Setup, state: ModelState, log: dict[str, Any]) -> list[
     # ripple seen in the waveform compare as shares, not as sums of squares)
     out = [s for s in out if promise(s) > BIC_MARGIN]
     out.sort(key=lambda s: -s.share)
+    out = _one_inductance(state, out, log)
     # the starts of one shape (a Stribeck speed, a warm-up time) are one effect: the refit of
     # the best-screened start moves the shape; the others would repeat it
     seen: set = set()
@@ -244,6 +245,38 @@ def _distinct(state: ModelState, proposals: list, log: dict[str, Any]) -> list:
         else:
             log.setdefault("twins", {}).setdefault(twin, []).append(c.key)
     return out
+
+
+def _one_inductance(state: ModelState, screens: list[Screen],
+                    log: dict[str, Any]) -> list[Screen]:
+    """Inductors that carry the same current (La and a connector's in series) re-tuned are
+    the same circuit, and score alike in the linear screen: the one with the smallest
+    relative change (the largest inductance, the one a series inductance is least off
+    against) is refitted; the others are named with it."""
+    groups: list[tuple[np.ndarray, list[Screen]]] = []
+    for s in screens:
+        c = s.proposal.candidate
+        if c.effect != "inductance":
+            continue
+        try:
+            i = np.abs(np.asarray(state.fit.sim[f"{c.target}.i"], float))
+        except KeyError:
+            continue
+        atol = 1e-9 * max(float(np.max(i)), 1e-300)
+        group = next((g for j, g in groups if np.allclose(i, j, rtol=1e-6, atol=atol)), None)
+        if group is None:
+            groups.append((i, [s]))
+        else:
+            group.append(s)
+    drop = set()
+    for _, group in groups:
+        keep = min(group, key=lambda x: abs(next(iter(x.start.values()), 0.0)))
+        others = [x for x in group if x is not keep]
+        drop |= {id(x) for x in others}
+        if others:
+            log.setdefault("twins", {}).setdefault(keep.proposal.candidate.key, []).extend(
+                x.proposal.candidate.key for x in others)
+    return [s for s in screens if id(s) not in drop]
 
 
 def _near_ties(screens: list[Screen], top: int) -> list[Screen]:
