@@ -104,6 +104,35 @@ def test_table_rows_between_output_times_are_stops_compiled_to_the_bit(
     assert kernels.t.size == 51
 
 
+def test_table_rows_a_rounding_off_output_times_lose_no_output(compile_text, tmp_path,
+                                                                 monkeypatch):
+    """Rows written as sums (3 x 0.1 ms = 0.30000000000000003 ms) a rounding away from the
+    output times and from the end of a pwl segment: each is that time, not a second stop a
+    few ulps away (IDA would answer such a stop with the time it stands at, and the output
+    time would be lost or the run fail)."""
+    rows = [k * 1e-4 for k in range(11)]
+    assert rows[3] != 3e-4  # the premise: written as a sum, it is not the decimal
+    (tmp_path / "in.csv").write_text("time,v\n" + "".join(
+        f"{t!r},{float(np.sin(3000 * t))!r}\n" for t in rows))
+    model = compile_text("""
+        components:
+          - {name: V1, type: V, p: a, n: gnd, V: {table: {file: in.csv, column: v}}}
+          - {name: R1, type: R, p: a, n: gnd, R: 1 ohm}
+          - {name: V2, type: V, p: b, n: gnd, V: {pwl: [[0, 0], [0.3 ms, 3 V], [0.6 ms, -1 V]]}}
+          - {name: R2, type: R, p: b, n: gnd, R: 2 ohm}
+        probes: {i1: R1.i, i2: R2.i}
+        analysis: {stop: 1 ms, step: 1 us, rtol: 1e-10, atol: 1e-12}
+    """)
+    python, kernels = _both(model, monkeypatch)
+    assert _ran_direct(model)
+    for res in (python, kernels):
+        assert res.success and res.t.size == 1001
+        np.testing.assert_allclose(res["i1"], np.interp(res.t, rows, np.sin(3000 * np.array(
+            rows))), atol=1e-9)
+        np.testing.assert_allclose(res["i2"], np.interp(res.t, [0, 3e-4, 6e-4], [0, 3, -1]) / 2,
+                                   atol=1e-9)
+
+
 def test_a_small_pwl_table_runs_compiled(compile_text, tmp_path, monkeypatch):
     """Points written in the netlist or a short CSV become a Piecewise of parameters."""
     (tmp_path / "pts.csv").write_text("time,v\n0,0\n0.001,2\n0.003,2\n0.004,-1\n")

@@ -233,6 +233,14 @@ class DirectIDA:
         # IDA is stopped exactly at each and goes on without a restart, as the Python route's
         # step loop does; they are stepped to like output times and dropped after
         rows = np.asarray(self.opts.get("stops", ()), dtype=float)
+        # a row a rounding away from an output time or the span's ends (0.1 ms + 0.2 ms) is
+        # that time: as two stops, IDA would be asked for a step of a few ulps, which it
+        # answers with the time it stands at (the output time is lost) or fails
+        near = np.clip(np.searchsorted(tspan, rows), 1, max(tspan.size - 1, 1))
+        near = np.where(np.abs(tspan[near - 1] - rows) < np.abs(tspan[near] - rows),
+                        near - 1, near)
+        same = np.abs(tspan[near] - rows) <= 1e-12 * np.maximum(np.abs(rows), 1e-300)
+        rows = np.where(same, tspan[near], rows)
         rows = rows[(rows > tspan[0]) & (rows < tspan[-1])]
         times = np.union1d(tspan[1:], rows)
         times = np.concatenate([tspan[:1], times])
