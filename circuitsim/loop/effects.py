@@ -314,7 +314,7 @@ def _component_laws(net: Netlist, duration: float | None = None) -> list[Candida
                 "inductance", c.name, {p: (0.0, -0.9, 10.0)}, {},
                 f"the inductance of {c.name} off by a factor 1 + dL (an inductance in series "
                 f"with it: the supply's or a cable's)",
-                lambda r, n=c.name, p=p, k=INDUCTORS[c.type]: _scale(r, n, k, p),
+                lambda r, n=c.name, p=p: _scale_inductance(r, n, p),
                 steps={p: 1e-3}, retunes=True))
             p = _pname("inductor-saturation", c.name, "Ipar")
             q = _pname("inductor-saturation", c.name, "ratio")
@@ -470,6 +470,18 @@ def _scale(raw: RawNetlist, name: str, key: str, rel: str) -> None:
     """Scale a component's value by (1 + rel), ``rel`` a new parameter (null 0)."""
     e = raw.component_entry(name)
     e[key] = f"{_operand(raw, e[key], f'{rel}_0')}*(1 + {rel})"
+
+
+def _scale_inductance(raw: RawNetlist, name: str, rel: str) -> None:
+    """Scale an inductor by (1 + rel); one a saturation patch has turned into ``Lsat``
+    first is scaled at both ends of its curve, so that its knee and ratio keep their
+    meaning."""
+    e = raw.component_entry(name)
+    if e.get("type") == "Lsat":
+        _scale(raw, name, "Lzer", rel)
+        e["Linf"] = f"({e['Linf']})*(1 + {rel})"
+    else:
+        _scale(raw, name, "L", rel)
 
 
 def _operand(raw: RawNetlist, value: Any, pname: str) -> str:
