@@ -225,26 +225,33 @@ SAME_FIT = 1e-7
 def _distinct(state: ModelState, proposals: list, log: dict[str, Any]) -> list:
     """A resistance in series with any of several elements that carry the same current is
     the same circuit: one of them is screened, and the others are named with it."""
-    sim, out, seen = state.fit.sim, [], []
+    out, seen = [], []
     for prop in proposals:
         c = prop.candidate
-        if c.effect not in SERIES:
+        i = _current(state, c.target) if c.effect in SERIES else None
+        if i is None:
             out.append(prop)
             continue
-        try:
-            i = np.asarray(sim[f"{c.target}.i"], float)
-        except KeyError:
-            out.append(prop)
-            continue
-        scale = max(float(np.max(np.abs(i))), 1e-300)
-        twin = next((k for k, j in seen if np.allclose(np.abs(i), np.abs(j), rtol=1e-6,
-                                                         atol=1e-9 * scale)), None)
+        twin = next((k for k, j in seen if _same_current(i, j)), None)
         if twin is None:
             seen.append((c.key, i))
             out.append(prop)
         else:
             log.setdefault("twins", {}).setdefault(twin, []).append(c.key)
     return out
+
+
+def _current(state: ModelState, target: str) -> np.ndarray | None:
+    """The magnitude of the current through ``target`` in the fitted run (None when it has
+    no branch current)."""
+    try:
+        return np.abs(np.asarray(state.fit.sim[f"{target}.i"], float))
+    except KeyError:
+        return None
+
+
+def _same_current(i: np.ndarray, j: np.ndarray) -> bool:
+    return bool(np.allclose(i, j, rtol=1e-6, atol=1e-9 * max(float(np.max(i)), 1e-300)))
 
 
 def _one_inductance(state: ModelState, screens: list[Screen],
@@ -256,14 +263,10 @@ def _one_inductance(state: ModelState, screens: list[Screen],
     groups: list[tuple[np.ndarray, list[Screen]]] = []
     for s in screens:
         c = s.proposal.candidate
-        if c.effect != "inductance":
+        i = _current(state, c.target) if c.effect == "inductance" else None
+        if i is None:
             continue
-        try:
-            i = np.abs(np.asarray(state.fit.sim[f"{c.target}.i"], float))
-        except KeyError:
-            continue
-        atol = 1e-9 * max(float(np.max(i)), 1e-300)
-        group = next((g for j, g in groups if np.allclose(i, j, rtol=1e-6, atol=atol)), None)
+        group = next((g for j, g in groups if _same_current(i, j)), None)
         if group is None:
             groups.append((i, [s]))
         else:
