@@ -197,3 +197,28 @@ def test_cli_report_html_and_written_netlist_reproduce_the_diagnosis(tmp_path, c
     nrmse = [np.sqrt(np.mean((rec[c] - sim[c]) ** 2)) / np.std(rec[c]) for c in cols]
     assert float(np.sqrt(np.mean(np.square(nrmse)))) == pytest.approx(d["error_after"],
                                                                       rel=1e-3)
+
+
+def test_swap_tries_each_set_of_effects_once_and_never_one_effect_twice():
+    """The swap step after an acceptance: the rounds' alternatives are combined, but a
+    combination holding one effect twice (two patches of one component) or a reordering of
+    a set already tried is not a model to refit."""
+    from types import SimpleNamespace
+
+    from circuitsim.loop.diagnose.context import Choice
+    from circuitsim.loop.diagnose.engine import _distinct_combos
+
+    def choice(key: str) -> Choice:
+        return Choice(SimpleNamespace(key=key))
+
+    options = [[choice("brush"), choice("coulomb"), choice("viscous")],
+               [choice("viscous"), choice("coulomb"), choice("offset")]]
+    combos = [tuple(c.candidate.key for c in combo) for combo in _distinct_combos(options)]
+    sets = [frozenset(c) for c in combos]
+    assert len(sets) == len(set(sets))                      # each set once
+    assert all(len(s) == 2 for s in sets)                   # never one effect twice
+    assert frozenset({"brush", "viscous"}) not in sets      # the model as it stands
+    # every other pair of distinct effects the options allow is tried
+    assert set(sets) == {frozenset(p) for p in [("brush", "coulomb"), ("brush", "offset"),
+                                                 ("coulomb", "viscous"), ("coulomb", "offset"),
+                                                 ("viscous", "offset")]}

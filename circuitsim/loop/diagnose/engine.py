@@ -400,7 +400,7 @@ def _swap(setup: Setup, state: ModelState, log: dict[str, Any]) -> ModelState:
     options = [[choice, *(Choice(t.candidates[0], choice.correction)
                           for t in log.get("rounds", {}).get(choice.candidate.key, []))]
                for choice in state.chosen]
-    combos = list(itertools.product(*options))[1:]  # the first is the model as it stands
+    combos = _distinct_combos(options)
     # with one effect, its round already compared the alternatives in the same company
     if len(state.chosen) < 2 or not combos or len(combos) >= MAX_COMBINATIONS:
         return state
@@ -442,6 +442,20 @@ def _swap(setup: Setup, state: ModelState, log: dict[str, Any]) -> ModelState:
                 if a.candidates[0].key == c.candidate.key)
     best.model = compile_raw(best.raw)
     return best
+
+
+def _distinct_combos(options: list[list[Choice]]) -> list[tuple[Choice, ...]]:
+    """The combinations of ``options`` other than the model as it stands (the first), each
+    set of effects once: one effect twice would patch the same component twice, and two
+    orders of the same set are the same model."""
+    seen = {frozenset(c.candidate.key for c in next(itertools.product(*options)))}
+    combos = []
+    for combo in itertools.product(*options):
+        keys = frozenset(c.candidate.key for c in combo)
+        if len(keys) == len(combo) and keys not in seen:
+            seen.add(keys)
+            combos.append(combo)
+    return combos
 
 
 def _refit_choices(setup: Setup, state: ModelState, chosen: list[Choice],
