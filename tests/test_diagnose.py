@@ -170,6 +170,28 @@ def test_noise_floor_is_the_white_level_and_never_above_the_residual():
     assert noise_sigma(near_nyquist) <= np.sqrt(np.mean(near_nyquist**2))
 
 
+def test_a_record_quantised_coarser_than_its_noise_has_the_rounding_noise_as_floor():
+    """An ADC step (20 mA) above the noise (4 mA white): the reading holds one value for runs
+    of samples, most third differences are 0 and their median says ~0. The floor is then the
+    rounding noise q/sqrt(12) (uniform error; a moving signal crosses many levels), close to
+    the reading's true error; a record that is not on a lattice has no step."""
+    from circuitsim.loop.diagnose import noise_sigma
+    from circuitsim.loop.diagnose.residual import adc_step
+
+    rng = np.random.default_rng(8)
+    t = np.linspace(0.0, 1.0, 20000)
+    clean = 1.5 * np.sin(2 * np.pi * 1.3 * t)
+    q = 0.02
+    x = q * np.round((clean + rng.normal(0.0, 0.004, t.size)) / q)
+    r = x - clean
+    assert noise_sigma(r) < 0.3 * q / np.sqrt(12)  # the differences alone see ~nothing
+    assert adc_step(x) == pytest.approx(q, rel=1e-9)
+    # between the rounding alone and the reading's whole error sqrt(q^2/12 + 0.004^2)
+    floor = noise_sigma(r, adc_step(x))
+    assert q / np.sqrt(12) * (1 - 1e-12) <= floor <= float(np.std(r)) <= 1.25 * floor
+    assert adc_step(clean + rng.normal(0.0, 0.004, t.size)) == 0.0
+
+
 def test_cli_report_html_and_written_netlist_reproduce_the_diagnosis(tmp_path, capsys):
     """`circuitsim diagnose` on a CSV: diag.json has the required fields, the HTML has both
     plots, and the written netlist, simulated on the record's grid, gives the reported error."""

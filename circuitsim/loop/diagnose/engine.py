@@ -43,7 +43,7 @@ from circuitsim.loop.diagnose.decide import BIC_MARGIN, Trial, judge, refit_tria
 from circuitsim.loop.diagnose.describe import remaining
 from circuitsim.loop.diagnose.netlist_out import _with_values
 from circuitsim.loop.diagnose.noise import delta_bic, whiteners_of
-from circuitsim.loop.diagnose.residual import _orders, analyse, noise_sigma
+from circuitsim.loop.diagnose.residual import _orders, adc_step, analyse, noise_sigma
 from circuitsim.loop.diagnose.result import Accepted, Diagnosis, DiagnosisError
 from circuitsim.loop.diagnose.screen import (
     Screen,
@@ -146,9 +146,11 @@ def _spread(x) -> float:
 
 
 def _noise_weight(residual, measured) -> float:
-    """A probe's noise level [unit]: the white level of its residual, never below a
-    millionth of its spread (a noise-free or coarsely quantised record)."""
-    return max(noise_sigma(np.asarray(residual, float)), 1e-6 * _spread(measured))
+    """A probe's noise level [unit]: the white level of its residual, never below its ADC's
+    rounding noise (a record quantised coarser than its noise) nor a millionth of its spread
+    (a noise-free record)."""
+    return max(noise_sigma(np.asarray(residual, float), adc_step(measured)),
+               1e-6 * _spread(measured))
 
 
 # ------------------------------------------------------------------------------- search

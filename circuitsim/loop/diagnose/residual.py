@@ -11,17 +11,32 @@ import numpy as np
 ORDER_TOL = 0.03  # a spectral peak is order k when |f/f_shaft - k| < ORDER_TOL k
 
 
-def noise_sigma(r: np.ndarray) -> float:
-    """White-noise level of a residual from its third differences (robust: median).
+def noise_sigma(r: np.ndarray, step: float = 0.0) -> float:
+    """White-noise level of a residual from its third differences (robust: median), never
+    below the quantisation noise step/sqrt(12) of an ADC of ``step`` [probe unit].
 
     Differencing removes smooth structure (a tone at 2 % of the sample rate keeps 0.2 % of
     its size after three differences) and multiplies white noise's variance by C(6, 3) = 20.
     A tone near the Nyquist frequency is amplified instead (up to 64/20 in variance), so the
-    estimate is capped at the residual's own RMS: noise is a part of the residual.
+    estimate is capped at the residual's own RMS: noise is a part of the residual. A record
+    read by an ADC coarser than its noise holds the same value for runs of samples: most
+    third differences are 0 and their median says nothing of the rounding error.
     """
     d = np.diff(r, n=3)
     est = float(1.4826 * np.median(np.abs(d - np.median(d))) / math.sqrt(20))
-    return min(est, float(np.sqrt(np.mean(np.square(r)))))
+    return min(max(est, step / math.sqrt(12.0)), float(np.sqrt(np.mean(np.square(r)))))
+
+
+def adc_step(x: np.ndarray) -> float:
+    """The step [unit of x] of the lattice a quantised record's values lie on; 0 when they
+    do not (a record with about as many distinct values as samples)."""
+    x = np.asarray(x, float)
+    u = np.unique(x[np.isfinite(x)])
+    if u.size < 3 or u.size > x.size // 4:
+        return 0.0
+    q = float(np.min(np.diff(u)))
+    k = (u - u[0]) / q
+    return q if bool(np.all(np.abs(k - np.round(k)) < 1e-3)) else 0.0
 
 
 def ljung_box(r: np.ndarray, lags: int = 20) -> tuple[float, float]:
@@ -65,7 +80,7 @@ def analyse(model, record, fit_res, probes: Sequence[str]) -> dict[str, Any]:
     for p in probes:
         r = np.asarray(fit_res.residuals[p])
         x = np.asarray(record[p])
-        sigma = noise_sigma(r)
+        sigma = noise_sigma(r, adc_step(x))
         peaks = _time_peaks(t, r, out["shafts"], sim)
         peaks += _order_peaks(sim, speeds, t, r, peaks)
         q, pval = ljung_box(r)
