@@ -175,3 +175,28 @@ def test_pss_and_ac_agree_while_linear_and_part_when_the_varistor_clamps(compile
         last = tr.t >= 0.019
         i_tr = np.max(np.abs(tr["i"][last]))
         assert np.max(np.abs(ps["i"])) == pytest.approx(i_tr, rel=1e-3)
+
+
+RC_SINE = """
+    components:
+      - {name: V1, type: V, p: a, n: gnd, V: {sine: {offset: 1, amplitude: 1, freq: 1 kHz}}}
+      - {name: R1, type: R, p: a, n: b, R: 1 kohm}
+      - {name: C1, type: C, p: b, n: gnd, C: 1 uF}
+    probes: {v: b.v}
+"""
+
+
+@pytest.mark.parametrize("drive", ["1 mA", "{sine: {offset: 1 mA, amplitude: 1 mA, freq: 1 kHz}}"])
+def test_pss_refuses_a_drive_that_charges_a_capacitor_every_period(compile_text, drive):
+    """A current with a nonzero mean into a capacitor has no periodic steady state. Newton's
+    step through a zero derivative threw a.v to 1e9 V, where the 1 V gap passed the relative
+    tolerance: 'mean 9.007199e+09 V', exit 0."""
+    model = compile_text(f"""
+        components:
+          - {{name: I1, type: I, p: gnd, n: a, I: {drive}}}
+          - {{name: C1, type: C, p: a, n: gnd, C: 1 uF}}
+        probes: {{v: a.v}}
+    """)
+    with pytest.raises(SolverError, match=r"there is none: a\.v ends each period \+(1|0\.9)"):
+        periodic_steady_state(model, period=1e-3)
+

@@ -137,11 +137,12 @@ def _setup(model, params, order: float, period: float | None, rtol: float, atol:
 
 def _newton(shoot: _Shooting, z: np.ndarray, tol: float, max_iter: int):
     """Newton on the gap with a finite-difference Jacobian of the period map."""
-    r = shoot.gap(z)
+    r = first = shoot.gap(z)
     it = 0
     while True:
         scale = shoot.scale(z)
         if np.max(np.abs(r) / scale) < tol:
+            _closes(shoot, r, first, it)
             return z, r, it
         it += 1
         if it > max_iter:
@@ -158,3 +159,21 @@ def _newton(shoot: _Shooting, z: np.ndarray, tol: float, max_iter: int):
             J[:, c] = (shoot.gap(zz) - r) / h
         z = z + np.linalg.lstsq(J, -r, rcond=None)[0]
         r = shoot.gap(z)
+
+
+def _closes(shoot: _Shooting, r: np.ndarray, first: np.ndarray, it: int) -> None:
+    """Refuse a 'converged' orbit whose gap never shrank: the tolerance is relative to the
+    state, so a map with no fixed point (a state that grows by the same step every period,
+    as a capacitor fed a current with a nonzero mean) passes it once Newton's step, divided by
+    a zero derivative, has thrown the state to 1e9. Newton on a real orbit cuts the gap by
+    orders of magnitude; here it stays as it was."""
+    if it == 0 or np.max(np.abs(r)) < 0.5 * np.max(np.abs(first)):
+        return
+    from circuitsim.errors import SolverError
+
+    names = [shoot.model.state_names[k] for k in shoot.free] + ["the shaft angle"]
+    k = int(np.argmax(np.abs(r)))
+    raise SolverError(f"periodic steady state: there is none: {names[k]} ends each period "
+                      f"{r[k]:+.4g} from where it started, whatever the start. A source with a nonzero mean into a capacitor or an "
+                      f"inductor, or a torque into an undamped shaft, grows every period: add "
+                      f"a bleed resistor or a damper, or a drive whose mean is zero")
