@@ -200,3 +200,16 @@ def test_pss_refuses_a_drive_that_charges_a_capacitor_every_period(compile_text,
     with pytest.raises(SolverError, match=r"there is none: a\.v ends each period \+(1|0\.9)"):
         periodic_steady_state(model, period=1e-3)
 
+
+@pytest.mark.parametrize("period", [0.7e-3, 1e-15])
+def test_pss_refuses_a_period_that_is_not_the_drives(compile_text, period):
+    """Shot over 0.7 ms, an RC fed a 1 kHz sine 'settled' at a mean of 1.30 V (1 V), exit 0;
+    over 1 fs the state at rest passed as periodic."""
+    from circuitsim.errors import ParameterError
+
+    model = compile_text(RC_SINE)
+    with pytest.raises(ParameterError, match=r"V1: the shooting period .* is not a whole "
+                                             r"number of the sine source's period 0\.001 s"):
+        periodic_steady_state(model, period=period)
+    ps = periodic_steady_state(model, period=3e-3)  # a whole number of periods is a period
+    assert ps["v"].mean() == pytest.approx(1.0, abs=1e-6)

@@ -114,6 +114,7 @@ def _setup(model, params, order: float, period: float | None, rtol: float, atol:
     """The shooting problem and its first guess: the operating point on the section phi = 0
     with the period of its speed (autonomous), or the state from rest."""
     from circuitsim.solve.init import initial_state
+    from circuitsim.solve.sources import check_period
 
     p = model.param_vector(params)
     nd = model.meta["n_diff"]
@@ -130,6 +131,7 @@ def _setup(model, params, order: float, period: float | None, rtol: float, atol:
         T = 2 * np.pi / order / op.yp[angles[0]]
         free = [k for k in range(nd) if k not in angles]
         return _Shooting(model, p, opts, free, angles, order, y, None), np.append(y[free], T)
+    check_period(model, model.param_values(params), float(period))
     y, _ = initial_state(model, 0.0, p)
     free = list(range(nd))
     return _Shooting(model, p, opts, free, angles, order, y, float(period)), y[free].copy()
