@@ -215,7 +215,7 @@ def test_plot_title_with_dollar_and_bode_png(write_netlist, tmp_path, capsys):
     assert main(["run", str(path), "--out", str(tmp_path / "t.csv"), "--plot", str(png)]) == 0
     assert png.read_bytes()[:4] == b"\x89PNG"
     bode = tmp_path / "b.png"
-    assert main(["ac", str(path), "--input", "V1", "--output", "v", "--f", "10..100k",
+    assert main(["ac", str(path), "--input", "V1", "--output", "v_out", "--f", "10..100k",
                  "--plot", str(bode)]) == 0
     assert bode.read_bytes()[:4] == b"\x89PNG"
 
@@ -310,3 +310,25 @@ def test_fit_shows_progress_on_a_terminal_only(tmp_path):
                            capture_output=True, text=True, timeout=120, check=False)
     assert piped.returncode == 0 and "simulations" not in piped.stderr
     assert "estimate" in piped.stdout
+
+
+@pytest.mark.parametrize("args, words", [
+    # an empty list left the grid without runs: IndexError in _compile_all, a traceback
+    (["sweep", str(RC), "--set", "R1.R=,"], "hold no value"),
+    # 1e8 points: a list of 1e8 floats, then a hang building the runs
+    (["sweep", str(RC), "--set", "R1.R=1..2:lin:100000000"], "more than 100000"),
+    (["sweep", str(RC), "--set", "R1.R=1..2:lin:1000", "--set", "C1.C=1u..2u:lin:1000"],
+     "1000000 runs"),
+    # inf Hz gave |H| = nan with exit 0; a negative frequency the conjugate's phase
+    (["ac", str(RC), "--input", "V1", "--output", "v_out", "--f", "1e400"], "is inf"),
+    (["ac", str(RC), "--input", "V1", "--output", "v_out", "--f=-10,10"], "-10 Hz"),
+])
+def test_bad_sweep_and_frequency_values_exit_2(args, words, capsys, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    try:
+        code = main(args)
+    except SystemExit as exc:  # argparse's own refusals
+        code = exc.code
+    assert code == 2
+    err = capsys.readouterr().err
+    assert words in err and "Traceback" not in err

@@ -137,6 +137,14 @@ def ac(model, input: str, output: str, freqs, params: Mapping[str, float] | None
     ``input`` is a source component (its value is perturbed) or a parameter name such as
     ``M.e0`` (an additive back-EMF voltage) or ``Vin.V.value``.
     """
+    freqs = np.atleast_1d(np.asarray(freqs, float))
+    bad = freqs[~(np.isfinite(freqs) & (freqs >= 0))]
+    if bad.size:
+        from circuitsim.errors import ParameterError
+
+        # a negative frequency gives the conjugate (phase of the wrong sign), inf gives NaN
+        raise ParameterError(f"ac: frequency {bad[0]:g} Hz: frequencies are finite and "
+                             f">= 0 Hz (0 is DC)")
     residual = model.fns[0]
     lin = lin or linearize(model, params)
     names = model.meta["params"]
@@ -158,7 +166,6 @@ def ac(model, input: str, output: str, freqs, params: Mapping[str, float] | None
                                          tuple(pp), out)[0] / (2 * hu * len(lin.samples))
         b += (cols[0] - cols[1]) / (2 * hu * len(lin.samples))
     cy, cyp = _output_rows(model, lin, out)
-    freqs = np.atleast_1d(np.asarray(freqs, float))
     H = np.empty(freqs.size, complex)
     for i, f in enumerate(freqs):
         s = 2j * np.pi * f
