@@ -213,3 +213,30 @@ def test_pss_refuses_a_period_that_is_not_the_drives(compile_text, period):
         periodic_steady_state(model, period=period)
     ps = periodic_steady_state(model, period=3e-3)  # a whole number of periods is a period
     assert ps["v"].mean() == pytest.approx(1.0, abs=1e-6)
+
+
+@pytest.mark.parametrize("series", ["", "1 mohm"])
+def test_ac_of_a_source_across_a_capacitor(compile_text, series):
+    """A voltage source straight across a capacitor: index reduction writes the capacitor's
+    current with the source value's derivative, zero for a constant, so ac answered |H| =
+    1/R (no j w C) for the source current and 0 for the capacitor's, exit 0. Refused now,
+    and right once the source has a series resistance."""
+    from circuitsim.errors import ParameterError
+
+    wire = ("{name: Rs, type: R, p: s, n: a, R: " + series + "}") if series else \
+        "{name: Rs, type: R, p: a, n: gnd, R: 1 kohm}"
+    model = compile_text(f"""
+        components:
+          - {{name: V1, type: V, p: {'s' if series else 'a'}, n: gnd, V: 1}}
+          - {wire}
+          - {{name: C1, type: C, p: a, n: gnd, C: 1 uF}}
+          - {{name: R1, type: R, p: a, n: gnd, R: 1 kohm}}
+        probes: {{ic: C1.i}}
+    """)
+    if not series:
+        with pytest.raises(ParameterError, match=r"net\.yaml:\d+: V1: ac: the input 'V1'.*"
+                                                 r"series resistance"):
+            ac(model, "V1", "ic", [1e3])
+        return
+    res = ac(model, "V1", "ic", [1e3])
+    assert res.magnitude[0] == pytest.approx(2 * np.pi * 1e3 * 1e-6, rel=1e-5)
