@@ -332,3 +332,19 @@ def test_bad_sweep_and_frequency_values_exit_2(args, words, capsys, tmp_path, mo
     assert code == 2
     err = capsys.readouterr().err
     assert words in err and "Traceback" not in err
+
+
+def test_an_output_step_longer_than_the_run_still_reaches_the_stop(compile_text):
+    """step 2 ms for a 1 ms run rounded to a single output, t = 0: '0 s simulated', the
+    values at rest as mean and final, exit 0."""
+    model = compile_text("""
+        components:
+          - {name: V1, type: V, p: a, n: gnd, V: 1}
+          - {name: R1, type: R, p: a, n: b, R: 1 kohm}
+          - {name: C1, type: C, p: b, n: gnd, C: 1 uF}
+        probes: {v: b.v}
+        analysis: {stop: 1 ms, step: 2 ms}
+    """)
+    res = model.simulate(rtol=1e-9, atol=1e-12)
+    assert res.t[-1] == 1e-3
+    assert res["v"][-1] == pytest.approx(1 - math.exp(-1), rel=1e-6)
