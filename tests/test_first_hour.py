@@ -215,7 +215,7 @@ def test_plot_title_with_dollar_and_bode_png(write_netlist, tmp_path, capsys):
     assert main(["run", str(path), "--out", str(tmp_path / "t.csv"), "--plot", str(png)]) == 0
     assert png.read_bytes()[:4] == b"\x89PNG"
     bode = tmp_path / "b.png"
-    assert main(["ac", str(path), "--input", "V1", "--output", "v_out", "--f", "10..100k",
+    assert main(["ac", str(path), "--input", "V1", "--output", "v", "--f", "10..100k",
                  "--plot", str(bode)]) == 0
     assert bode.read_bytes()[:4] == b"\x89PNG"
 
