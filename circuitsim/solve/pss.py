@@ -176,6 +176,7 @@ def _closes(shoot: _Shooting, r: np.ndarray, first: np.ndarray, it: int) -> None
     names = [shoot.model.state_names[k] for k in shoot.free] + ["the shaft angle"]
     k = int(np.argmax(np.abs(r)))
     raise SolverError(f"periodic steady state: there is none: {names[k]} ends each period "
-                      f"{r[k]:+.4g} from where it started, whatever the start. A source with a nonzero mean into a capacitor or an "
-                      f"inductor, or a torque into an undamped shaft, grows every period: add "
-                      f"a bleed resistor or a damper, or a drive whose mean is zero")
+                      f"{r[k]:+.4g} from where it started, whatever the start. A source with "
+                      f"a nonzero mean into a capacitor or an inductor, or a torque into an "
+                      f"undamped shaft, grows every period: add a bleed resistor or a damper, "
+                      f"or a drive whose mean is zero")
