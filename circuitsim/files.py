@@ -210,7 +210,8 @@ def _csv_rows(path: str | os.PathLike, error: RowError, take):
     """``take(csv.reader)`` on the opened file; the file's own faults raised as ``error``."""
     p = os.fspath(path)
     try:
-        with open(p, encoding="utf-8", newline="") as fh:
+        # utf-8-sig: a spreadsheet's byte-order mark is not part of the first column's name
+        with open(p, encoding="utf-8-sig", newline="") as fh:
             return take(csv.reader(fh))
     except FileNotFoundError:
         raise error(f"data file '{p}' not found. Check the path", 0) from None

@@ -5,7 +5,10 @@ a piecewise-linear input, and against a pwl of the same rows."""
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
+import pytest
 
 RC = """
     components:
@@ -100,3 +103,46 @@ def test_a_table_feeding_a_switching_law_stops_and_switches(compile_text, tmp_pa
     assert runs[0].t_events.size == runs[1].t_events.size == 7
     assert np.max(np.abs(runs[0].t_events - runs[1].t_events)) < 1e-9
     assert np.max(np.abs(runs[0]["vc"] - runs[1]["vc"])) < 1e-7
+
+
+TABLE_RC = """
+components:
+  - {name: V1, type: V, p: a, n: gnd, V: {KIND: {file: in.csv, column: v}}}
+  - {name: R1, type: R, p: a, n: b, R: 1 kohm}
+  - {name: C1, type: C, p: b, n: gnd, C: 1 uF}
+probes: {v: b.v}
+"""
+
+
+@pytest.mark.parametrize("kind", ["table", "pwl"])
+@pytest.mark.parametrize("content, value", [
+    # the units in brackets were dropped: 0.75 s read 1000.75 V for 1.75 V
+    ("time [ms],v [mV]\n0,1000\n1000,2000\n", 1.75),
+    # a spreadsheet's byte-order mark made 'time' a column named '\ufefftime'
+    ("\ufefftime,v\r\n0,1\r\n1,2\r\n", 1.75),
+])
+def test_a_table_file_with_units_or_a_bom_reads_in_si(write_netlist, tmp_path, kind, content,
+                                                      value) -> None:
+    import circuitsim as cs
+    from circuitsim.solve.op import operating_point, probe_values
+
+    (tmp_path / "in.csv").write_text(content, encoding="utf-8", newline="")
+    model = cs.compile(cs.load(write_netlist(TABLE_RC.replace("KIND", kind))))
+    op = operating_point(model, t=0.75)
+    assert probe_values(model, op, t=0.75)["v"] == pytest.approx(value, rel=1e-12)
+
+
+@pytest.mark.parametrize("content, words", [
+    ("time,v,v\n0,1,5\n1,2,3\n", "two columns named 'v'"),  # was: the first, silently
+    ("time [ms],v [mA]\n0,1\n1,2\n", "column 'v [mA]': has dimension A"),
+    ("time [V],v\n0,1\n1,2\n", "column 'time [V]'"),
+    ("time;v\n0;1\n1;2\n", "separate values by ';'"),
+])
+def test_a_table_file_that_cannot_be_read_right_is_refused(write_netlist, tmp_path, content,
+                                                           words) -> None:
+    import circuitsim as cs
+    from circuitsim.errors import NetlistError
+
+    (tmp_path / "in.csv").write_text(content, encoding="utf-8")
+    with pytest.raises(NetlistError, match=r"net\.yaml:2: V1: .*" + re.escape(words)):
+        cs.load(write_netlist(TABLE_RC.replace("KIND", "table")))

@@ -310,3 +310,41 @@ def test_fit_shows_progress_on_a_terminal_only(tmp_path):
                            capture_output=True, text=True, timeout=120, check=False)
     assert piped.returncode == 0 and "simulations" not in piped.stderr
     assert "estimate" in piped.stdout
+
+
+@pytest.mark.parametrize("args, words", [
+    # an empty list left the grid without runs: IndexError in _compile_all, a traceback
+    (["sweep", str(RC), "--set", "R1.R=,"], "hold no value"),
+    # 1e8 points: a list of 1e8 floats, then a hang building the runs
+    (["sweep", str(RC), "--set", "R1.R=1..2:lin:100000000"], "more than 100000"),
+    (["sweep", str(RC), "--set", "R1.R=1..2:lin:1000", "--set", "C1.C=1u..2u:lin:1000"],
+     "1000000 runs"),
+    # inf Hz gave |H| = nan with exit 0; a negative frequency the conjugate's phase
+    (["ac", str(RC), "--input", "V1", "--output", "v_out", "--f", "1e400"], "is inf"),
+    (["ac", str(RC), "--input", "V1", "--output", "v_out", "--f=-10,10"], "-10 Hz"),
+])
+def test_bad_sweep_and_frequency_values_exit_2(args, words, capsys, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    try:
+        code = main(args)
+    except SystemExit as exc:  # argparse's own refusals
+        code = exc.code
+    assert code == 2
+    err = capsys.readouterr().err
+    assert words in err and "Traceback" not in err
+
+
+def test_an_output_step_longer_than_the_run_still_reaches_the_stop(compile_text):
+    """step 2 ms for a 1 ms run rounded to a single output, t = 0: '0 s simulated', the
+    values at rest as mean and final, exit 0."""
+    model = compile_text("""
+        components:
+          - {name: V1, type: V, p: a, n: gnd, V: 1}
+          - {name: R1, type: R, p: a, n: b, R: 1 kohm}
+          - {name: C1, type: C, p: b, n: gnd, C: 1 uF}
+        probes: {v: b.v}
+        analysis: {stop: 1 ms, step: 2 ms}
+    """)
+    res = model.simulate(rtol=1e-9, atol=1e-12)
+    assert res.t[-1] == 1e-3
+    assert res["v"][-1] == pytest.approx(1 - math.exp(-1), rel=1e-6)

@@ -177,6 +177,16 @@ def test_run_csv_has_units_and_honours_probe_after_decimate(rc_copy, tmp_path):
     np.testing.assert_allclose(data[:, 1], 1 - np.exp(-data[:, 0] / 1e-3), atol=1e-6)
 
 
+def test_after_past_the_stop_exits_2_and_writes_nothing(rc_copy, tmp_path, capsys):
+    """--after 1 s on a 5 ms run wrote a CSV holding its header alone, exit 0."""
+    out = tmp_path / "v.csv"
+    assert main(["run", str(rc_copy), "--out", str(out), "--after", "1"]) == 2
+    assert "--after 1 s is after the stop time 0.005 s" in capsys.readouterr().err
+    assert not out.exists()
+    assert main(["run", str(rc_copy), "--out", str(out), "--after", "5ms"]) == 0
+    assert out.read_text().splitlines()[1].startswith("0.005,")  # the stop's row
+
+
 def test_run_csv_reads_back_as_a_record(rc_copy, tmp_path):
     """The units in the header do not get in the way of `fit` reading a run's CSV."""
     from circuitsim.loop.record import load_record

@@ -195,6 +195,10 @@ def _simulate(model, args, overrides: dict[str, float]):
         raise ParameterError(f"{args.netlist}: {too_many_points(points)}")
     # points before --after are not written: do not keep them in memory either, except the
     # first and the whole steady window (the summary needs every point of it)
+    if args.after > stop:  # the CSV would hold its header alone, written as a success
+        raise ParameterError(f"{args.netlist}: --after {args.after:g} s is after the "
+                             f"stop time {stop:g} s, so no row would be written; give an "
+                             f"earlier --after or a later --stop")
     opts = {}
     if args.after > 0:
         opts = {"keep_after": min(args.after, stop * (1 - args.window)), "decimate": 1 << 62}

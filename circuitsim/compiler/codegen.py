@@ -22,7 +22,7 @@ from typing import Any
 
 from circuitsim.solve.kernel_lib import KERNEL_LIB
 
-CODEGEN_VERSION = "21"
+CODEGEN_VERSION = "22"
 
 # [unknowns] from here on the residual's linear part is a sparse matrix product (measured on
 # RLC ladders: 5x slower than the scalar code at 16 unknowns, 2x at 50, equal at 100) ...
@@ -720,4 +720,5 @@ def _meta(dae, names_out: list[str], init_syms: list) -> dict[str, Any]:
         "n_equations": len(dae.states),
         "integrals": {s.name: dae.integrals[s.name] for s in dae.states
                       if s.name in dae.integrals},
+        "differentiated_params": list(dae.differentiated_params),
     }

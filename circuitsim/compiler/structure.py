@@ -62,6 +62,7 @@ class IndexOneDae:
     integrals: Mapping[str, str]
     events: tuple[SwitchEvent, ...] = ()
     crossings: tuple[Crossing, ...] = ()
+    differentiated_params: tuple[str, ...] = ()  # see _System
 
     def pretty(self, latex: bool = False) -> str:
         return format_equations(self.equations, self.origins,
@@ -84,6 +85,9 @@ class _System:
         self.anti: dict[sp.Symbol, sp.Symbol] = {d: u for u, d in self.der.items()}
         self.steps: dict[sp.Symbol, sp.Expr] = {}
         self.params = set(dae.params)
+        # parameters in an equation that was differentiated: their own derivative was taken
+        # as zero, so a small-signal perturbation of one misses its s*u term (ac refuses it)
+        self.differentiated_params: set[sp.Symbol] = set()
         self.report: list[str] = []
 
     def der_of(self, s: sp.Symbol) -> sp.Symbol:
@@ -277,6 +281,8 @@ def eliminate(sys: _System) -> int:
         ix.drop(k)
         sys.unknowns.discard(v)
         sys.record(mapping)
+        if len(mapping) > 1:  # a state and its derivative: rest was differentiated
+            sys.differentiated_params |= mapping[v].free_symbols & sys.params
         for f in sorted(touched - {k}):
             ix.set_eq(f, ix.live[f].xreplace(mapping))
             _push(ix, heap, f)
@@ -340,6 +346,7 @@ def pantelides(sys: _System) -> list[int | None]:
             for j in cv:
                 D[j] = sys.der_of(j)
             for lq in sorted(ce):
+                sys.differentiated_params |= sys.eqs[lq].free_symbols & sys.params
                 sys.eqs.append(sp.expand(sys.differentiate(sys.eqs[lq])))
                 sys.origins.append(f"d/dt of ({sys.origins[lq]})")
                 inc.append(sys.incidence(sys.eqs[-1]))
@@ -442,7 +449,7 @@ def reduce_index(dae: Dae, nominal: Mapping[sp.Symbol, float]) -> IndexOneDae:
     return IndexOneDae(dae.t, states, yp, len(diff), tuple(sys.eqs), tuple(sys.origins),
                        dae.params, resolve, exports, probes, dict(dae.initial), dae.tables,
                        dae.breaks, dae.units, tuple(sys.report), dae.integrals, events,
-                       crossings)
+                       crossings, tuple(sorted(p.name for p in sys.differentiated_params)))
 
 
 def _check_square(sys: _System) -> None:

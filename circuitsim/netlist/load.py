@@ -789,13 +789,13 @@ class _Builder:
         if kind == "pwl":
             # from a CSV file: the inline form; the file under the same rule as a table's
             body = pwl_points(body, path, loc, comp, check=lambda f: self._input_file(
-                f, "pwl file", loc, comp))
+                f, "pwl file", loc, comp), unit=d.unit)
             return kind, self.pwl(body, loc, comp, key, d, values, prefix)
         if kind == "table":
             if not isinstance(body, Mapping) or "file" not in body or "column" not in body:
                 raise NetlistError("a table waveform needs {file: data.csv, column: NAME} "
                                    "(and optionally time: NAME, scale: NUMBER)", loc, comp)
-            tables.append(self.table(body, loc, comp, path))
+            tables.append(self.table(body, loc, comp, path, d.unit))
             body = {k: v for k, v in body.items() if k not in ("file", "column", "time")}
         elif not isinstance(body, Mapping):
             if wcls.scalar_key is None:
@@ -825,12 +825,14 @@ class _Builder:
                                                  Param(d.unit, "value"), d.unit)
         return len(body)
 
-    def table(self, body: Mapping, loc: SourceLoc, comp: str, path: str) -> TableData:
+    def table(self, body: Mapping, loc: SourceLoc, comp: str, path: str,
+              unit: str | None = None) -> TableData:
         from circuitsim.netlist.tables import read_column
 
         file = Path(path).parent / str(body["file"])
         self._input_file(file, "table file", loc, comp)
-        x, y = read_column(file, str(body["column"]), str(body.get("time", "time")), loc, comp)
+        x, y = read_column(file, str(body["column"]), str(body.get("time", "time")), loc, comp,
+                           unit)
         self.n_tables += 1
         return TableData(x, y, f"{file.name}:{body['column']}")
 

@@ -13,10 +13,11 @@ MAX_POINTS = 1000
 
 
 def pwl_points(body: Any, path: str, loc: SourceLoc, comp: str,
-               check: Callable[[Path], None] | None = None) -> Any:
+               check: Callable[[Path], None] | None = None, unit: str | None = None) -> Any:
     """The inline ``[[t, v], ...]`` form of a PWL given as a CSV file (SI numbers), or
     ``body`` unchanged when it is already inline. ``check`` vets the file before it is read
-    (the loader's rule for where input files may lie and how large they may be)."""
+    (the loader's rule for where input files may lie and how large they may be); ``unit``
+    is the signal's, against which a unit in the file's header is checked."""
     if not isinstance(body, Mapping):
         return body
     from circuitsim.netlist.tables import read_column
@@ -29,7 +30,8 @@ def pwl_points(body: Any, path: str, loc: SourceLoc, comp: str,
     file = Path(path).parent / str(body["file"])
     if check is not None:
         check(file)
-    x, y = read_column(file, str(body["column"]), str(body.get("time", "time")), loc, comp)
+    x, y = read_column(file, str(body["column"]), str(body.get("time", "time")), loc, comp,
+                       unit)
     if len(x) > MAX_POINTS:
         raise NetlistError(f"pwl file '{file.name}' has {len(x)} points (at most {MAX_POINTS}: "
                            f"each is a breakpoint); for a long record use {{table: {{file: "

@@ -29,6 +29,25 @@ def _resolve_input(model, name: str) -> str:
                      f"parameter ({', '.join(params[:8])}, ...)")
 
 
+def _refuse_differentiated(model, param: str, input: str) -> str:
+    """``param``, unless index reduction differentiated an equation holding it: a source
+    across a capacitor (or in a loop of them), or a current source feeding an inductor
+    cut-set. Its derivative was taken as zero there, so the perturbation would miss its s*u
+    term: a 1 V source across 1 uF answered |H| = 0 A/V for the capacitor's current."""
+    if param not in model.meta.get("differentiated_params", ()):
+        return param
+    from circuitsim.errors import ParameterError
+    from circuitsim.solve.sources import _loc
+
+    owner = param.rsplit(".", 2)[0]
+    raise ParameterError(
+        f"ac: the input '{input}' ({param}) drives a loop of capacitors and voltage sources or "
+        f"a cut-set of inductors and current sources, whose equations were differentiated "
+        f"with its value held constant: its small-signal response would be wrong. Give that "
+        f"source a series resistance (a voltage source) or a parallel one (a current source), "
+        f"e.g. 1 mohm or 1 Gohm", _loc(model, owner), owner)
+
+
 @dataclass(frozen=True)
 class Linearization:
     """The averaged model linearised at its operating point: Fy dy + Fyp dy' + Fu du = 0."""
@@ -137,10 +156,18 @@ def ac(model, input: str, output: str, freqs, params: Mapping[str, float] | None
     ``input`` is a source component (its value is perturbed) or a parameter name such as
     ``M.e0`` (an additive back-EMF voltage) or ``Vin.V.value``.
     """
+    freqs = np.atleast_1d(np.asarray(freqs, float))
+    bad = freqs[~(np.isfinite(freqs) & (freqs >= 0))]
+    if bad.size:
+        from circuitsim.errors import ParameterError
+
+        # a negative frequency gives the conjugate (phase of the wrong sign), inf gives NaN
+        raise ParameterError(f"ac: frequency {bad[0]:g} Hz: frequencies are finite and "
+                             f">= 0 Hz (0 is DC)")
     residual = model.fns[0]
     lin = lin or linearize(model, params)
     names = model.meta["params"]
-    u = names.index(_resolve_input(model, input))
+    u = names.index(_refuse_differentiated(model, _resolve_input(model, input), input))
     out = _output_index(model, output)
     n = len(lin.op.y)
     res = np.zeros(n)
@@ -158,7 +185,6 @@ def ac(model, input: str, output: str, freqs, params: Mapping[str, float] | None
                                          tuple(pp), out)[0] / (2 * hu * len(lin.samples))
         b += (cols[0] - cols[1]) / (2 * hu * len(lin.samples))
     cy, cyp = _output_rows(model, lin, out)
-    freqs = np.atleast_1d(np.asarray(freqs, float))
     H = np.empty(freqs.size, complex)
     for i, f in enumerate(freqs):
         s = 2j * np.pi * f

@@ -82,7 +82,9 @@ def settings(model, stop: float | None = None, step: float | None = None,
         raise SolverError(f"init must be 'rest' or 'op', not {init!r}")
     if t_eval is None:
         h = step or an.step or stop / 20_000
-        t_eval = np.linspace(0.0, stop, round(stop / h) + 1)
+        # at least [0, stop]: a step longer than twice the run rounded to one output, t = 0,
+        # and the run reported '0 s simulated' with the values at rest
+        t_eval = np.linspace(0.0, stop, max(1, round(stop / h)) + 1)
     return Settings(stop, np.asarray(t_eval, float), an.rtol if rtol is None else rtol,
                     an.atol if atol is None else atol,
                     an.max_step if max_step is None else max_step, init)

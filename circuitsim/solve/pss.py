@@ -114,6 +114,7 @@ def _setup(model, params, order: float, period: float | None, rtol: float, atol:
     """The shooting problem and its first guess: the operating point on the section phi = 0
     with the period of its speed (autonomous), or the state from rest."""
     from circuitsim.solve.init import initial_state
+    from circuitsim.solve.sources import check_period
 
     p = model.param_vector(params)
     nd = model.meta["n_diff"]
@@ -130,6 +131,7 @@ def _setup(model, params, order: float, period: float | None, rtol: float, atol:
         T = 2 * np.pi / order / op.yp[angles[0]]
         free = [k for k in range(nd) if k not in angles]
         return _Shooting(model, p, opts, free, angles, order, y, None), np.append(y[free], T)
+    check_period(model, model.param_values(params), float(period))
     y, _ = initial_state(model, 0.0, p)
     free = list(range(nd))
     return _Shooting(model, p, opts, free, angles, order, y, float(period)), y[free].copy()
@@ -137,11 +139,12 @@ def _setup(model, params, order: float, period: float | None, rtol: float, atol:
 
 def _newton(shoot: _Shooting, z: np.ndarray, tol: float, max_iter: int):
     """Newton on the gap with a finite-difference Jacobian of the period map."""
-    r = shoot.gap(z)
+    r = first = shoot.gap(z)
     it = 0
     while True:
         scale = shoot.scale(z)
         if np.max(np.abs(r) / scale) < tol:
+            _closes(shoot, r, first, it)
             return z, r, it
         it += 1
         if it > max_iter:
@@ -158,3 +161,22 @@ def _newton(shoot: _Shooting, z: np.ndarray, tol: float, max_iter: int):
             J[:, c] = (shoot.gap(zz) - r) / h
         z = z + np.linalg.lstsq(J, -r, rcond=None)[0]
         r = shoot.gap(z)
+
+
+def _closes(shoot: _Shooting, r: np.ndarray, first: np.ndarray, it: int) -> None:
+    """Refuse a 'converged' orbit whose gap never shrank: the tolerance is relative to the
+    state, so a map with no fixed point (a state that grows by the same step every period,
+    as a capacitor fed a current with a nonzero mean) passes it once Newton's step, divided by
+    a zero derivative, has thrown the state to 1e9. Newton on a real orbit cuts the gap by
+    orders of magnitude; here it stays as it was."""
+    if it == 0 or np.max(np.abs(r)) < 0.5 * np.max(np.abs(first)):
+        return
+    from circuitsim.errors import SolverError
+
+    names = [shoot.model.state_names[k] for k in shoot.free] + ["the shaft angle"]
+    k = int(np.argmax(np.abs(r)))
+    raise SolverError(f"periodic steady state: there is none: {names[k]} ends each period "
+                      f"{r[k]:+.4g} from where it started, whatever the start. A source with "
+                      f"a nonzero mean into a capacitor or an inductor, or a torque into an "
+                      f"undamped shaft, grows every period: add a bleed resistor or a damper, "
+                      f"or a drive whose mean is zero")

@@ -64,6 +64,24 @@ def bound_step(model, values: Mapping[str, float], stop: float, t_eval: np.ndarr
     return bound
 
 
+def check_period(model, values: Mapping[str, float], period: float) -> None:
+    """Refuse a shooting period [s] that is not a whole number of every periodic source's
+    periods: the map over it is not the drive's, and Newton finds its fixed point all the
+    same (an RC fed a 1 kHz sine, shot over 0.7 ms, gave a 'steady' mean of 1.30 V for 1 V).
+    Raises ParameterError naming the source and the period that would fit."""
+    for owner, kind, wave, p in _sources(model, values):
+        own = wave.period(p)
+        if not own > 0:
+            continue
+        ratio = period / own
+        if ratio >= 0.5 and abs(ratio - round(ratio)) <= 1e-6 * ratio:
+            continue
+        raise ParameterError(
+            f"the shooting period {period:.6g} s is not a whole number of the {kind} source's "
+            f"period {own:.6g} s ({ratio:.6g} of them): give --period {own:.6g} (or a multiple "
+            f"of it that every source shares)", _loc(model, owner), owner)
+
+
 def _loc(model, owner: str):
     try:
         return model.netlist.component(owner).loc

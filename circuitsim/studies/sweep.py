@@ -26,6 +26,10 @@ import numpy as np
 
 from circuitsim.errors import CircuitsimError, ParameterError
 
+#: More values than this on an axis, or runs in a grid, is a typo (1..2:lin:100000000 built a
+#: list of 1e8 floats and then hung building the runs), not a study anyone can wait for.
+MAX_POINTS = 100_000
+
 
 def parse_range(text: str, unit: str | None = None, dim=None) -> list[float]:
     """Values of a sweep axis: ``1e-9..1e-1:log:9``, ``0..1:lin:5``, or ``1,2,5`` [SI].
@@ -51,6 +55,8 @@ def parse_range(text: str, unit: str | None = None, dim=None) -> list[float]:
             got = ex.dimension(node, {})
         except (ex.ExprError, ValueError, KeyError, ZeroDivisionError) as exc:
             raise ParameterError(f"sweep value '{s}': {exc}") from None
+        if not math.isfinite(value):
+            raise ParameterError(f"sweep value '{s.strip()}' is {value}: give a finite number")
         if node.kind == "unit" and target is not None and got is not None and \
                 not compatible(got, target):
             raise ParameterError(f"value '{s.strip()}': "
@@ -70,6 +76,9 @@ def parse_range(text: str, unit: str | None = None, dim=None) -> list[float]:
                                  f"in 1e-9..1e-1:log:9") from None
         if n < 1:
             raise ParameterError(f"sweep range '{text}' needs at least one point")
+        if n > MAX_POINTS:
+            raise ParameterError(f"sweep range '{text}': {n} points, more than "
+                                 f"{MAX_POINTS}; ask for fewer")
         if (kind or "lin") == "log":
             if lo <= 0 or hi <= 0:
                 raise ParameterError(f"a log range needs positive ends: '{text}'")
@@ -77,7 +86,11 @@ def parse_range(text: str, unit: str | None = None, dim=None) -> list[float]:
         if (kind or "lin") != "lin":
             raise ParameterError(f"sweep range '{text}': spacing is 'lin' or 'log'")
         return [float(v) for v in np.linspace(lo, hi, n)]
-    return [num(s) for s in text.split(",") if s.strip()]
+    values = [num(s) for s in text.split(",") if s.strip()]
+    if not values:
+        raise ParameterError(f"sweep values '{text}' hold no value: give a list as 1,2,5 or "
+                             f"a range as 1..10:lin:5")
+    return values
 
 
 def grid_points(grid: Mapping[str, Sequence[float]], mode: str = "product"
@@ -87,6 +100,12 @@ def grid_points(grid: Mapping[str, Sequence[float]], mode: str = "product"
     axes = [list(grid[n]) for n in names]
     if not names:
         return [{}]
+    empty = [n for n, a in zip(names, axes, strict=True) if not a]
+    if empty:
+        raise ParameterError(f"sweep axis '{empty[0]}' has no value: give it at least one")
+    if mode == "product" and math.prod(len(a) for a in axes) > MAX_POINTS:
+        raise ParameterError(f"the sweep grid holds {math.prod(len(a) for a in axes)} runs, "
+                             f"more than {MAX_POINTS}: fewer values, or --zip the axes")
     if mode == "zip":
         if len({len(a) for a in axes}) != 1:
             raise ParameterError("zipped sweep axes must have the same length: " +
