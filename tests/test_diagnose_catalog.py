@@ -38,6 +38,11 @@ MOTORS = {
     # the coupling reverses, where a play shows; only the motor side is measured
     "tm": {"netlist": NETLISTS / "examples" / "two_mass_motor.yaml", "stop": 0.2,
            "rate": 10e3, "noise": {"speed": 0.1, "i": 2e-3}, "lsb": {"speed": 0.05, "i": 1e-3}},
+    # a 24 V gearmotor whose current is read on a 20 mOhm shunt in series with the 1.1 ohm
+    # winding (the benchmark's motor D, fast regime)
+    "d": {"netlist": NETLISTS.parent / "benchmarks" / "diagnosis" / "netlists" / "motor_d.yaml",
+          "stop": 0.4, "rate": 10e3, "noise": {"speed": 0.2, "current": 1e-2},
+          "lsb": {"speed": 0.05, "current": 5e-3}},
 }
 
 
@@ -155,6 +160,21 @@ def test_resistance_warming_up_through_the_loop():
     tau = next(v for k, v in got.items() if k.endswith("_tau"))
     assert rise == pytest.approx(0.3, rel=0.05), d.summary()
     assert tau == pytest.approx(0.1, rel=0.1), d.summary()
+
+
+def test_a_warm_up_is_named_on_the_winding_not_on_the_shunt_in_series_with_it():
+    """The winding (1.1 ohm) warming up 10 % with tau = 0.1 s: a 20 mOhm shunt in series
+    carries the same current, and its own "warm-up" would fit alike with a rise of 550 %.
+    The element that changes least is named, the shunt as the same circuit."""
+    rec = make_record("d", [("resistance-drift", "Ra", None, [0.1, 0.1])], seed=21,
+                      shaped=True)
+    d = diagnose(cs.load(MOTORS["d"]["netlist"]), rec)
+    assert [(a.effect, a.target) for a in d.effects] == [("resistance-drift", "Ra")], \
+        d.summary()
+    got = d.effects[0].parameters
+    assert next(v for k, v in got.items() if k.endswith("_rise")) == \
+        pytest.approx(0.1, rel=0.05), d.summary()
+    assert "Rsh" in d.summary(), d.summary()
 
 
 def test_stribeck_peak_and_its_speed_through_the_loop():

@@ -205,7 +205,7 @@ def _screen_round(setup: Setup, state: ModelState, log: dict[str, Any]) -> list[
     # ripple seen in the waveform compare as shares, not as sums of squares)
     out = [s for s in out if promise(s) > BIC_MARGIN]
     out.sort(key=lambda s: -s.share)
-    out = _one_inductance(state, out, log)
+    out = _one_per_current(state, out, log)
     # the starts of one shape (a Stribeck speed, a warm-up time) are one effect: the refit of
     # the best-screened start moves the shape; the others would repeat it
     seen: set = set()
@@ -220,6 +220,8 @@ def _screen_round(setup: Setup, state: ModelState, log: dict[str, Any]) -> list[
 
 
 SERIES = ("series-resistance", "source-resistance")
+#: effects that change an element by a factor: of twins in series, the largest changes least
+RELATIVE = ("inductance", "resistance-drift")
 #: Relative difference of two trials' weighted SSE below which they are the same fit.
 SAME_FIT = 1e-7
 
@@ -256,25 +258,27 @@ def _same_current(i: np.ndarray, j: np.ndarray) -> bool:
     return bool(np.allclose(i, j, rtol=1e-6, atol=1e-9 * max(float(np.max(i)), 1e-300)))
 
 
-def _one_inductance(state: ModelState, screens: list[Screen],
+def _one_per_current(state: ModelState, screens: list[Screen],
                     log: dict[str, Any]) -> list[Screen]:
-    """Inductors that carry the same current (La and a connector's in series) re-tuned are
-    the same circuit, and score alike in the linear screen: the one with the smallest
-    relative change (the largest inductance, the one a series inductance is least off
-    against) is refitted; the others are named with it."""
-    groups: list[tuple[np.ndarray, list[Screen]]] = []
+    """Elements that carry the same current, re-tuned (La and a connector's inductance in
+    series) or drifting (a winding and a current shunt warming up), are the same circuit and
+    score alike in the linear screen: the one with the smallest relative change (the
+    largest value: a 20 mOhm shunt "warming up" by 500 % is the 1 ohm winding's 10 %) is
+    refitted; the others are named with it."""
+    groups: list[tuple[tuple[str, str], np.ndarray, list[Screen]]] = []
     for s in screens:
         c = s.proposal.candidate
-        i = _current(state, c.target) if c.effect == "inductance" else None
+        i = _current(state, c.target) if c.effect in RELATIVE else None
         if i is None:
             continue
-        group = next((g for j, g in groups if _same_current(i, j)), None)
+        kind = (c.effect, c.key.removeprefix(f"{c.effect}:{c.target}"))  # with its shape
+        group = next((g for k, j, g in groups if k == kind and _same_current(i, j)), None)
         if group is None:
-            groups.append((i, [s]))
+            groups.append((kind, i, [s]))
         else:
             group.append(s)
     drop = set()
-    for _, group in groups:
+    for _, _, group in groups:
         keep = min(group, key=lambda x: abs(next(iter(x.start.values()), 0.0)))
         others = [x for x in group if x is not keep]
         drop |= {id(x) for x in others}
