@@ -190,6 +190,25 @@ def explain_mismatch(value: Dim, target: Dim, target_unit: str) -> str:
             f"{target_unit})")
 
 
+class UnitMismatch(ValueError):
+    """A known unit of the wrong dimension (the message says why, in words to act on)."""
+
+
+def column_factor(unit: str, want: str | None) -> float:
+    """The SI factor of a data column's unit (a CSV header's 'name [unit]'), checked against
+    ``want`` (None, '', '1' or '@': unchecked; a unit pint does not know: unchecked too).
+    ValueError for a unit it cannot read, UnitMismatch for one of the wrong dimension."""
+    factor, dim = unit_info(unit)
+    if want and want not in ("1", "@"):
+        try:
+            target = unit_info(want)[1]
+        except ValueError:  # nothing to check against
+            return factor
+        if not compatible(dim, target):
+            raise UnitMismatch(explain_mismatch(dim, target, want))
+    return factor
+
+
 # SPICE multipliers, case-insensitive as in SPICE. 'mil' is a thousandth of an inch.
 SPICE_SCALE = {"f": 1e-15, "p": 1e-12, "n": 1e-9, "u": 1e-6, "µ": 1e-6, "μ": 1e-6, "m": 1e-3,
                "k": 1e3, "meg": 1e6, "g": 1e9, "t": 1e12, "mil": 25.4e-6}

@@ -27,6 +27,7 @@ HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
 import simulators_d as sd
+from make_records import describe_noise  # the noise text only; no simulator of the first set
 
 RECORDS = HERE / "records"
 TRUTH = HERE / "truth.json"
@@ -281,23 +282,6 @@ def unexplained(regime: str, clean: dict[str, np.ndarray]) -> dict[str, Any]:
     coef, *_ = np.linalg.lstsq(x, tr, rcond=None)
     return {"imprint": float(np.linalg.norm(tr)), "best_single": [best, single[best]],
             "all_scalar_effects_jointly": float(np.linalg.norm(tr - x @ coef))}
-
-
-def describe_noise(ns: dict[str, dict[str, Any]]) -> str:
-    """The noise spec as text."""
-    out = []
-    for p, d in ns.items():
-        parts = []
-        if d.get("white"):
-            parts.append(f"white sigma {d['white']:g}")
-        if d.get("ar1"):
-            parts.append(f"AR(1) sigma {d['ar1'][0]:g} phi {d['ar1'][1]:g}")
-        if d.get("pink"):
-            parts.append(f"1/f sigma {d['pink']:g}")
-        if d.get("quant"):
-            parts.append(f"ADC step {d['quant']:g}")
-        out.append(f"{p}: " + ", ".join(parts))
-    return "; ".join(out)
 
 
 def noise_spec(spec: dict[str, Any]) -> dict[str, dict[str, Any]]:

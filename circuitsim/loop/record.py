@@ -131,26 +131,20 @@ def _unit_factor(p: str, name: str, unit: str | None, units: Mapping[str, str],
     """The SI factor of a column's unit in brackets (1 without one), after checking it
     against the probe's unit (or seconds for the time column); DataError naming the column
     when it does not fit."""
-    from circuitsim.units import compatible, explain_mismatch, unit_info
+    from circuitsim.units import UnitMismatch, column_factor
 
     if unit is None:
         return 1.0
     cell = f"column '{name} [{unit}]' of data file '{p}'"
+    target = "s" if name == time else units.get(name, "")
     try:
-        factor, dim = unit_info(unit)
+        return column_factor(unit, target)
+    except UnitMismatch as exc:
+        what = "the time column" if name == time else f"the probe '{name}'"
+        raise DataError(f"{cell}: {exc}; {what} is in {target}", SourceLoc(p, 1)) from None
     except ValueError as exc:
         raise DataError(f"{cell}: {exc}. Write the unit as in the netlist (e.g. A, V, rad/s, "
                         f"rpm), or leave the brackets out for SI", SourceLoc(p, 1)) from None
-    target = "s" if name == time else units.get(name, "")
-    try:
-        want = unit_info(target)[1] if target and target != "1" else None
-    except ValueError:  # a probe unit pint does not know: nothing to check against
-        want = None
-    if want is not None and not compatible(dim, want):
-        what = "the time column" if name == time else f"the probe '{name}'"
-        raise DataError(f"{cell}: {explain_mismatch(dim, want, target)}; {what} is in "
-                        f"{target}", SourceLoc(p, 1))
-    return factor
 
 
 def _check_header(p: str, header: list[str], probes: Sequence[str] | None,

@@ -57,18 +57,15 @@ def _factor(file: Path, name: str, unit: str | None, want: str | None, where: So
     """The SI factor of a header's unit in brackets (1 without one), checked against
     ``want`` (a unit; None or '@': anything). 'time [ms]' was dropped with its unit, so a
     record in ms ran a thousand times slower."""
-    from circuitsim.units import compatible, explain_mismatch, unit_info
+    from circuitsim.units import UnitMismatch, column_factor
 
     if unit is None:
         return 1.0
     cell = f"data file '{file}': column '{name} [{unit}]'"
     try:
-        factor, dim = unit_info(unit)
+        return column_factor(unit, want)
+    except UnitMismatch as exc:
+        raise NetlistError(f"{cell}: {exc}", where, comp) from None
     except ValueError as exc:
         raise NetlistError(f"{cell}: {exc}. Write the unit as in the netlist (s, ms, V, mA), "
                            f"or leave the brackets out for SI", where, comp) from None
-    if want and want != "@":
-        target = unit_info(want)[1]
-        if not compatible(dim, target):
-            raise NetlistError(f"{cell}: {explain_mismatch(dim, target, want)}", where, comp)
-    return factor
