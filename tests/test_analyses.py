@@ -240,3 +240,39 @@ def test_ac_of_a_source_across_a_capacitor(compile_text, series):
         return
     res = ac(model, "V1", "ic", [1e3])
     assert res.magnitude[0] == pytest.approx(2 * np.pi * 1e3 * 1e-6, rel=1e-5)
+
+
+@pytest.mark.parametrize("kind", ["V-across-C", "I-through-L"])
+def test_op_holds_the_sources_at_the_instant(compile_text, kind):
+    """Index reduction writes a capacitor's current across a source as C dV/dt (an inductor's
+    voltage in series with a current source as L dI/dt). The operating point at time t holds
+    the sources at their values there: that current (voltage) is 0 and R carries V/R (the
+    source current). It reported C.i = 2 pi f C A at t = 0, the transient's value. The
+    transient keeps it: C dV/dt (L dI/dt) to rounding at every output point."""
+    f, amp, x, r = 1e3, 1.0, 1e-6, 1e3
+    if kind == "V-across-C":
+        parts = f"""
+          - {{name: S1, type: V, p: a, n: gnd, V: {{sine: {{amplitude: {amp}, freq: {f}}}}}}}
+          - {{name: X1, type: C, p: a, n: gnd, C: {x}}}
+          - {{name: R1, type: R, p: a, n: gnd, R: {r}}}"""
+        probe = "X1.i"
+    else:  # the source pushes its current into a, through the inductor and R to ground
+        parts = f"""
+          - {{name: S1, type: I, p: gnd, n: a, I: {{sine: {{amplitude: {amp}, freq: {f}}}}}}}
+          - {{name: X1, type: L, p: a, n: b, L: {x}}}
+          - {{name: R1, type: R, p: b, n: gnd, R: {r}}}"""
+        probe = "X1.v"
+    model = compile_text(f"""
+        components:{parts}
+        probes: {{x: {probe}, r: R1.i}}
+        analysis: {{stop: 1 ms, step: 1 us, rtol: 1e-9}}
+    """)
+    for t in (0.0, 0.1e-3, 0.25e-3):
+        held = amp * np.sin(2 * np.pi * f * t)  # the source's value at t
+        got = probe_values(model, operating_point(model, t=t), t=t)
+        assert got["x"] == pytest.approx(0.0, abs=1e-15)
+        assert got["r"] == pytest.approx(held / r if kind == "V-across-C" else held,
+                                         abs=1e-12)
+    res = model.simulate()
+    dual = x * amp * 2 * np.pi * f * np.cos(2 * np.pi * f * res.t)  # C dV/dt, or L dI/dt
+    assert np.max(np.abs(res["x"] - dual)) <= 1e-9 * np.max(np.abs(dual))

@@ -244,3 +244,61 @@ def test_swap_tries_each_set_of_effects_once_and_never_one_effect_twice():
     assert set(sets) == {frozenset(p) for p in [("brush", "coulomb"), ("brush", "offset"),
                                                  ("coulomb", "viscous"), ("coulomb", "offset"),
                                                  ("viscous", "offset")]}
+
+
+def test_a_trial_beyond_a_physical_limit_is_rejected_with_its_reason():
+    """An effect whose parameters together leave their physical range (a warm-up faster
+    than copper heats) is no finding however much it gains: rejected, the reason in its
+    note, as one that fits only at a bound is."""
+    from types import SimpleNamespace
+
+    from circuitsim.loop.diagnose.decide import Trial, _note
+
+    cand = next(c for c in effects.candidates(cs.load(NETLISTS / "examples" / "rc.yaml"),
+                                              None, (), duration=0.4)
+                if c.effect == "resistance-drift" and c.shape)
+    rise, tau = cand.free
+    fit = SimpleNamespace(params={rise: 0.46, tau: 0.12})
+    trial = Trial((cand,), fit, delta_bic=-500.0, share=0.9)
+    assert trial.passed  # what the fit alone says
+    trial.beyond = cand.limit(fit.params)
+    assert not trial.passed
+    assert _note(trial).startswith("fits only beyond its physical range: R1 changing by")
+
+
+@pytest.mark.parametrize(("a", "b"), [(0.3, 0.15), (0.15, 0.3)])
+def test_effects_that_explain_less_than_they_leave_are_a_partial_stand_in(a, b):
+    """The effects found must, together, explain more of the declared model's misfit than
+    the structure they leave. A residual of unit white noise + a 37 Hz line (amplitude a,
+    what the effect explains) + a square wave switched on at 1 s (amplitude b, what no
+    candidate explained): the share explained is sum(A^2) / (sum(A^2) + sum(B^2)) within
+    0.05 after prewhitening, and the effect is kept when it is the larger part (0.8) and
+    reported as a partial stand-in, the declared model kept, when it is the smaller (0.2)."""
+    from types import SimpleNamespace
+
+    from circuitsim.loop.diagnose.context import Choice, ModelState
+    from circuitsim.loop.diagnose.engine import _stand_ins
+
+    rng = np.random.default_rng(1)
+    t = np.arange(20000) * 1e-4
+    noise = rng.normal(size=t.size)
+    line, square = a * np.sin(2 * np.pi * 37 * t), b * np.sign(np.sin(2 * np.pi * 5 * t)) * \
+        (t > 1.0)
+    said: list[str] = []
+    setup = SimpleNamespace(probes=("x",), record=SimpleNamespace(t=t), log=said.append)
+    effect = SimpleNamespace(effect="sensor-offset", target="x", free={"o": (0.0, -1, 1)})
+    before = ModelState(None, None, [], {}, SimpleNamespace(residuals={"x": noise + line +
+                                                                        square}), {})
+    after = ModelState(None, None, ["o"], {"o": 0.1},
+                       SimpleNamespace(residuals={"x": noise + square}), {}, [Choice(effect)])
+    log: dict = {"rejected": []}
+    out = _stand_ins(setup, before, after, log)
+    share = np.sum(line ** 2) / (np.sum(line ** 2) + np.sum(square ** 2))
+    assert log["named_share"] == pytest.approx(share, abs=0.05)
+    if share > 0.5:
+        assert out is after and not log["rejected"]
+    else:
+        assert out is before and "stand_ins" in log
+        assert log["rejected"] == [{"effect": "sensor-offset", "target": "x",
+                                    "reason": log["stand_ins"]}]
+        assert "partial stand-in: sensor-offset on x would explain 2" in said[0]

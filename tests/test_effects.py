@@ -186,6 +186,37 @@ def test_warmup_patch_is_the_closed_form_and_exact_at_null(tmp_path):
     assert np.all(null["i"] == 0.5)
 
 
+def test_a_drift_is_bounded_by_how_far_and_how_fast_copper_can_heat(tmp_path):
+    """A resistance drifts because its winding warms or cools. Copper's coefficient
+    3.93e-3 /K over the widest swing of a winding (-20 to 180 degC: 200 K) bounds the
+    change to -44 % .. +79 %; adiabatic heating at 150 A/mm^2 (rho J^2 / (c d) with
+    rho = 1.68e-8 ohm m, c = 385 J/(kg K), d = 8960 kg/m^3: 110 K/s) bounds its rate to
+    43 %/s. A +46 % warm-up within tau = 0.12 s (what a supply current limit was taken for) is
+    beyond it, with the reason; the +10 % in 2 s of a warm winding is not."""
+    path = tmp_path / "r.yaml"
+    path.write_text("components:\n"
+                    "  - {name: V1, type: V, p: a, n: gnd, V: 1}\n"
+                    "  - {name: R1, type: R, p: a, n: gnd, R: 2}\n"
+                    "probes: {i: R1.i}\n")
+    heat = 1.68e-8 * 150e6 ** 2 / (385 * 8960)  # [K/s] with no cooling at all
+    assert heat == pytest.approx(109.6, abs=0.1)
+    for duration in (0.4, 6.0):
+        drifts = [c for c in effects.candidates(cs.load(path), None, (), duration=duration)
+                  if c.effect == "resistance-drift"]
+        line = next(c for c in drifts if not c.shape)
+        (alpha,) = line.free.values()
+        # a straight line no faster than heating, spanning no more than the swing
+        assert alpha[2] == pytest.approx(min(3.93e-3 * heat, 3.93e-3 * 200 / duration),
+                                         rel=1e-3) and alpha[1] == -alpha[2]
+        for warm in (c for c in drifts if c.shape):
+            rise, tau = warm.free
+            assert warm.free[rise][1:] == pytest.approx((1 / (1 + 0.786) - 1, 0.786))
+            why = warm.limit({rise: 0.46, tau: 0.12})
+            assert "R1" in why and "150 A/mm^2" in why and "+383%/s" in why
+            assert warm.limit({rise: 0.1, tau: 2.0}) == ""
+            assert warm.limit({rise: -0.1, tau: 0.1}) != ""  # cooling is bounded alike
+
+
 def test_backlash_patch_is_the_dead_zone_closed_form_and_exact_at_null(tmp_path):
     """A torque step T on a rotor J1 coupled to a load J2 through a coupling with a play of
     total width g: inside the play nothing is transmitted, neither spring nor damper, so the

@@ -22,7 +22,7 @@ from typing import Any
 
 from circuitsim.solve.kernel_lib import KERNEL_LIB
 
-CODEGEN_VERSION = "22"
+CODEGEN_VERSION = "23"
 
 # [unknowns] from here on the residual's linear part is a sparse matrix product (measured on
 # RLC ladders: 5x slower than the scalar code at 16 unknowns, 2x at 50, equal at 100) ...

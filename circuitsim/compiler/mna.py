@@ -8,12 +8,13 @@ non-reference node. F(t, x, x', p) = 0 stays symbolic. The core knows no compone
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
 import sympy as sp
 
+from circuitsim.compiler.names import TIME_RATE
 from circuitsim.component import (
     DOMAINS,
     WAVEFORMS,
@@ -104,11 +105,17 @@ def format_equations(equations, origins, der: Mapping[sp.Symbol, sp.Symbol],
     return "\n".join(lines)
 
 
+def time_rate() -> sp.Symbol:
+    """The TIME_RATE parameter's symbol."""
+    return sp.Symbol(TIME_RATE, real=True)
+
+
 class _Derivatives:
     """Hands out derivative symbols and differentiates expressions by the chain rule."""
 
-    def __init__(self, t: sp.Symbol):
+    def __init__(self, t: sp.Symbol, rate: Callable[[], sp.Symbol]):
         self.t = t
+        self.rate = rate  # the TIME_RATE parameter, registered when first needed
         self.table: dict[sp.Symbol, sp.Symbol] = {}
         self.unknowns: set[sp.Symbol] = set()
         self.derivs: set[sp.Symbol] = set()  # the table's values, for O(1) membership
@@ -122,6 +129,8 @@ class _Derivatives:
     def __call__(self, e: sp.Expr) -> sp.Expr:
         e = as_expr(e)
         out = sp.diff(e, self.t)
+        if out != 0:
+            out = self.rate() * out
         for s in e.free_symbols:
             if s in self.unknowns or s in self.derivs:
                 out += sp.diff(e, s) * self.symbol(s)
@@ -135,7 +144,7 @@ class _Assembly:
     def __init__(self, net: Netlist):
         self.net = net
         self.t = sp.Symbol("t", real=True)
-        self.der = _Derivatives(self.t)
+        self.der = _Derivatives(self.t, lambda: self.psym(TIME_RATE))
         self.unknowns: list[sp.Symbol] = []
         self.equations: list[sp.Expr] = []
         self.origins: list[str] = []

@@ -15,6 +15,7 @@ from typing import Any
 import numpy as np
 
 from circuitsim.compiler import cache, codegen
+from circuitsim.compiler.names import TIME_RATE
 from circuitsim.errors import CircuitWarning, ParameterError
 from circuitsim.netlist.load import Netlist
 from circuitsim.solve.route import kernels_requested
@@ -245,10 +246,12 @@ class CompiledModel:
         """
         overrides = dict(overrides or {})
         names = self.meta["params"]
-        unknown = [k for k in overrides if k not in self.netlist.parameters and k not in names]
+        settable = [n for n in names if n != TIME_RATE]  # the analyses set it, never a user
+        unknown = [k for k in overrides if k not in self.netlist.parameters and
+                   k not in settable]
         if unknown:
             raise ParameterError(f"unknown parameter '{unknown[0]}'"
-                                 f"{_near(unknown[0], [*self.netlist.parameters, *names])}; "
+                                 f"{_near(unknown[0], [*self.netlist.parameters, *settable])}; "
                                  f"`circuitsim check NETLIST` lists them", None)
         glob = {k: v for k, v in overrides.items() if k in self.netlist.parameters}
         env = self.netlist.global_values(glob)
@@ -262,7 +265,17 @@ class CompiledModel:
                                          val.loc, comp.name)
         for c in self.meta.get("crossings", ()):  # relations evaluated as written
             values[c["name"]] = -1.0
+        if TIME_RATE in names:
+            values[TIME_RATE] = 1.0
         return values
+
+    def frozen_vector(self, overrides: Mapping[str, float] | None = None) -> tuple[float, ...]:
+        """The parameter vector with time frozen: every explicit time derivative (a source's
+        rate of change in a differentiated equation) is zero, as at a DC operating point."""
+        values = self.param_values(overrides)
+        if TIME_RATE in values:
+            values[TIME_RATE] = 0.0
+        return tuple(values[n] for n in self.meta["params"])
 
     def param_vector(self, overrides: Mapping[str, float] | None = None) -> tuple[float, ...]:
         values = self.param_values(overrides)

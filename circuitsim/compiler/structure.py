@@ -30,7 +30,14 @@ import networkx as nx
 import numpy as np
 import sympy as sp
 
-from circuitsim.compiler.mna import BreakSource, Crossing, Dae, SwitchEvent, format_equations
+from circuitsim.compiler.mna import (
+    BreakSource,
+    Crossing,
+    Dae,
+    SwitchEvent,
+    format_equations,
+    time_rate,
+)
 from circuitsim.component import as_expr
 from circuitsim.errors import SingularCircuitError
 
@@ -115,6 +122,9 @@ class _System:
     def differentiate(self, e: sp.Expr) -> sp.Expr:
         """Total time derivative (chain rule over unknowns and their derivatives)."""
         out = sp.diff(e, self.t)
+        if out != 0:
+            out = time_rate() * out
+            self.params.add(time_rate())
         for s in sorted(self.incidence(e), key=lambda s: s.name):
             out += sp.diff(e, s) * self.der_of(s)
         return out
@@ -446,8 +456,10 @@ def reduce_index(dae: Dae, nominal: Mapping[sp.Symbol, float]) -> IndexOneDae:
                    for e in dae.events)
     crossings = tuple(Crossing(c.owner, c.mode, c.distance.xreplace(resolve),
                                c.scale.xreplace(resolve)) for c in dae.crossings)
+    # the time rate joins the parameters if a differentiation brought it in
+    params = (*dae.params, *sorted(sys.params - set(dae.params), key=lambda s: s.name))
     return IndexOneDae(dae.t, states, yp, len(diff), tuple(sys.eqs), tuple(sys.origins),
-                       dae.params, resolve, exports, probes, dict(dae.initial), dae.tables,
+                       params, resolve, exports, probes, dict(dae.initial), dae.tables,
                        dae.breaks, dae.units, tuple(sys.report), dae.integrals, events,
                        crossings, tuple(sorted(p.name for p in sys.differentiated_params)))
 

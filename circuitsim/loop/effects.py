@@ -47,6 +47,10 @@ class Candidate:
     # it re-tunes a value the netlist declares (an inertia) rather than adding physics: an
     # accepted one is reported as a correction of that value, never as a new cause
     retunes: bool = False
+    # a physical limit that ties parameters together (a box of bounds cannot hold it): given
+    # the fitted values, why they lie beyond it, or "" when they do not
+    limit: Callable[[Mapping[str, float]], str] | None = field(default=None, repr=False,
+                                                                compare=False)
 
     @property
     def key(self) -> str:
@@ -80,6 +84,21 @@ STRIBECK_SIGN = 0.01
 #: starts of a warm-up's time constant, as fractions of the record's duration: a drift that
 #: settles within the record is told from a straight line only when tau is below ~its length
 WARMUP_TAUS = (0.1, 0.3, 1.0)
+#: A resistance drifts because its winding warms or cools; copper bounds how far and how fast.
+ALPHA_CU = 3.93e-3  # [1/K] copper's temperature coefficient at 20 degC
+#: [K] the widest swing of a winding's temperature: a cold start at -20 degC to the 180 degC
+#: of insulation class H
+WINDING_SWING = 200.0
+RHO_CU = 1.68e-8  # [ohm m] copper's resistivity at 20 degC
+CV_CU = 3.45e6  # [J/(m^3 K)] copper's heat capacity per volume (385 J/(kg K) x 8960 kg/m^3)
+#: [A/m^2] a current density no winding carries even briefly: about four times the highest
+#: short-time ratings (30-40 A/mm^2), a tenth of what fuses copper within milliseconds
+J_WINDING_MAX = 150e6
+#: [1/s] the fastest relative change of a winding's resistance: copper heating with no
+#: cooling at all at J_WINDING_MAX (rho J^2 / c_v = 110 K/s) times its coefficient: 43 %/s
+DRIFT_RATE_MAX = ALPHA_CU * RHO_CU * J_WINDING_MAX ** 2 / CV_CU
+#: the range of a drift's relative change: the winding's widest swing either way
+DRIFT_RISE = (1.0 / (1.0 + ALPHA_CU * WINDING_SWING) - 1.0, ALPHA_CU * WINDING_SWING)
 
 
 def _pname(effect: str, target: str, what: str) -> str:
@@ -278,12 +297,22 @@ def _warmup(name: str, duration: float) -> list[Candidate]:
         rise, tau = (_pname("resistance-drift", f"{name}_{i}", x) for x in ("rise", "tau"))
         law = f"{rise}*(1 - exp(-t/({tau}*1[s])))*{name}.v"
         out.append(Candidate(
-            "resistance-drift", name, {rise: (0.0, -0.9, 10.0),
+            "resistance-drift", name, {rise: (0.0, *DRIFT_RISE),
                                        tau: (f * duration, 1e-6, 1e6)}, {},
             f"{name} warming up to a final value with a time constant",
             lambda r, n=name, i=i, law=law: _insert_series(r, n, f"RW{i}_{n}", law),
-            steps={rise: 1e-3, tau: 1e-2 * f * duration}, shape=(tau,)))
+            steps={rise: 1e-3, tau: 1e-2 * f * duration}, shape=(tau,),
+            limit=lambda v, n=name, rise=rise, tau=tau: _drift_rate(n, v[rise] / v[tau])))
     return out
+
+
+def _drift_rate(name: str, rate: float) -> str:
+    """Why a resistance changing at ``rate`` [1/s] is no winding warming or cooling ("" when
+    it may be one): copper heats no faster than with no cooling at J_WINDING_MAX."""
+    if abs(rate) <= DRIFT_RATE_MAX:
+        return ""
+    return (f"{name} changing by {rate:+.0%}/s: faster than copper heats with no cooling at "
+            f"{J_WINDING_MAX / 1e6:.0f} A/mm^2 ({DRIFT_RATE_MAX:.0%}/s)")
 
 
 #: declared inertias whose value a diagnosis may re-tune: (type, parameter)
@@ -325,8 +354,12 @@ def _component_laws(net: Netlist, duration: float | None = None) -> list[Candida
                 grid=(3.0, 1.0, 0.3, 0.1, 0.03, 0.01)))
         if c.type in ("R", "resistor"):
             p = _pname("resistance-drift", c.name, "alpha")
+            # a straight line is the start of a warm-up: it is as fast as one can be, and
+            # over the record it spans no more than the winding's widest swing
+            rate = DRIFT_RATE_MAX if not duration else min(DRIFT_RATE_MAX,
+                                                           DRIFT_RISE[1] / duration)
             out.append(Candidate(
-                "resistance-drift", c.name, {p: (0.0, -10.0, 10.0)}, {},
+                "resistance-drift", c.name, {p: (0.0, -rate, rate)}, {},
                 f"{c.name} drifting with time (warming up)",
                 lambda r, n=c.name, p=p: _drift(r, n, p), steps={p: 1e-3}))
             if duration:

@@ -69,7 +69,7 @@ def linearize(model, params: Mapping[str, float] | None = None) -> Linearization
     """Operating point and the analytic Jacobians dF/dy, dF/dy' averaged over a turn."""
     _, _, parts, _, _ = model.fns
     op = operating_point(model, params)
-    p = model.param_vector(params)
+    p = model.frozen_vector(params)
     angles, samples = _angles(model)
     n = len(op.y)
     Fy, Fyp = np.zeros((n, n)), np.zeros((n, n))

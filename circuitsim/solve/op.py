@@ -5,7 +5,8 @@ point of a rotating system is defined as the steady state of its *averaged* mode
 residual is averaged over a full turn of each shaft angle (which removes the harmonic ripple
 terms exactly, up to order N-1 for N sample angles), the angle itself is free and its
 derivative (the speed) is an unknown. Positions of translational nodes are held at their
-initial values; their derivatives are unknowns too. All other derivatives are zero.
+initial values; their derivatives are unknowns too. All other derivatives are zero, and so
+is every source's rate of change: the sources hold their values at the instant asked for.
 """
 
 from __future__ import annotations
@@ -67,7 +68,7 @@ def operating_point(model, params: Mapping[str, float] | None = None, t: float =
     refuse(model, "the operating point")
     names = model.state_names
     n = len(names)
-    p = model.param_vector(params)
+    p = model.frozen_vector(params)
     free = [k for k, s in enumerate(names) if s in model.meta.get("integrals", {})]
     angles = [k for k in free if model.meta["integrals"][names[k]] == "rotational"]
     y, _ = initial_state(model, t, p)
@@ -120,7 +121,7 @@ def probe_values(model, op: OperatingPoint, params: Mapping[str, float] | None =
     """Probes at the operating point (sources at time ``t`` [s]), averaged over a shaft turn
     like the residual."""
     _, _, _, observe, _ = model.fns
-    p = model.param_vector(params)
+    p = model.frozen_vector(params)
     angles, samples = _angles(model)
     Y = np.repeat(op.y[:, None], len(samples), axis=1)
     for k in angles:

@@ -4,7 +4,8 @@ The decision (see ``noise``): the BIC of prewhitened residuals falls by more tha
 ``BIC_MARGIN``; the candidate explains at least ``STRUCTURE_SHARE`` of the structure the
 residual holds (its significant spectral lines), so that a slice of an effect outside the
 catalog is no confident attribution; and no parameter of it ends on a bound of its physical
-range (an effect that only fits at a bound is a stand-in for something else).
+range, nor do its parameters together leave it (a candidate's ``limit``): an effect that
+only fits there is a stand-in for something else.
 """
 
 from __future__ import annotations
@@ -55,6 +56,7 @@ class Trial:
     delta_bic: float = math.inf
     share: float = 0.0
     at_bound: tuple[str, ...] = ()
+    beyond: str = ""  # why the fitted values lie beyond a physical limit, or ""
     note: str = ""
     sse_before: float = 0.0
     sse_after: float = 0.0
@@ -71,7 +73,7 @@ class Trial:
     @property
     def passed(self) -> bool:
         return self.delta_bic < -BIC_MARGIN and self.share >= STRUCTURE_SHARE and \
-            not self.at_bound and not self.small_of_large
+            not self.at_bound and not self.beyond and not self.small_of_large
 
     @property
     def key(self) -> str:
@@ -142,11 +144,31 @@ def judge(setup: Setup, state: ModelState, trial: Trial) -> Trial:
         structured += max(lines.structured, transient_excess(e)) / var
     trial.share = gain / structured if structured > 0 else (1.0 if gain > 0 else 0.0)
     trial.at_bound = _at_bound(trial)
+    trial.beyond = "; ".join(filter(None, (c.limit(trial.fit.params) for c in trial.candidates
+                                           if c.limit is not None)))
     trial.sse_before, trial.sse_after = weighted_sse(setup, state.fit), \
         weighted_sse(setup, trial.fit)
     trial.floor = float(setup.n * len(probes))  # residuals are in units of each probe's noise
     trial.note = _note(trial)
     return trial
+
+
+def explained_and_left(setup: Setup, before: ModelState, after: ModelState
+                       ) -> tuple[float, float]:
+    """What the model ``after`` explains of ``before``'s misfit, and the structure it leaves
+    (steady lines or a transient, whichever holds more), both in units of each probe's
+    whitened noise variance and measured as ``judge`` measures a trial."""
+    whiten = whiteners_of(after.fit.residuals, setup.probes)
+    old, new = before.whitened(setup, whiten), after.whitened(setup, whiten)
+    dt = float(np.mean(np.diff(setup.record.t)))
+    gain = left = 0.0
+    for p in setup.probes:
+        e = whiten[p].apply(after.fit.residuals[p])
+        var = max(new[p] / max(e.size, 1), 1e-300)
+        lines = significant_lines(e, dt)
+        gain += (old[p] - new[p]) / var
+        left += max(lines.structured, transient_excess(e)) / var
+    return gain, left
 
 
 def _at_bound(trial: Trial) -> tuple[str, ...]:
@@ -166,6 +188,8 @@ def _at_bound(trial: Trial) -> tuple[str, ...]:
 def _note(trial: Trial) -> str:
     if trial.at_bound:
         return f"fits only with {', '.join(trial.at_bound)} at the edge of its physical range"
+    if trial.beyond:
+        return f"fits only beyond its physical range: {trial.beyond}"
     if trial.delta_bic >= -BIC_MARGIN:
         return f"not significant (ΔBIC {trial.delta_bic:.1f} on prewhitened residuals)"
     if trial.small_of_large:

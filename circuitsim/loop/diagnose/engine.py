@@ -13,7 +13,9 @@ The stages, each a function of plain objects (``context``):
    cause.
 5. ``_backward`` -- after each acceptance every earlier effect is re-tested with the others
    present and dropped when it is no longer needed; when no single candidate passes, the best
-   two are tried together (one effect may have been absorbing two).
+   two are tried together (one effect may have been absorbing two). ``_stand_ins``: at the
+   end, effects that together explain less of the declared model's misfit than the structure
+   they leave are a partial stand-in for a cause outside the catalog, and kept out.
 6. ``describe.remaining`` -- what structure is left, in plain terms, never a catalog label.
 7. ``Diagnosis`` (``result``) -- the report: error before and after, effects, corrections,
    what could not be told apart, what was rejected and why, what remains.
@@ -39,7 +41,13 @@ from circuitsim.loop.diagnose.context import (
     refit,
     simulate,
 )
-from circuitsim.loop.diagnose.decide import BIC_MARGIN, Trial, judge, refit_trial
+from circuitsim.loop.diagnose.decide import (
+    BIC_MARGIN,
+    Trial,
+    explained_and_left,
+    judge,
+    refit_trial,
+)
 from circuitsim.loop.diagnose.describe import remaining
 from circuitsim.loop.diagnose.netlist_out import _with_values
 from circuitsim.loop.diagnose.noise import delta_bic, whiteners_of
@@ -93,6 +101,7 @@ def diagnose(netlist, record, free: Sequence[str] = (), *, probes: Sequence[str]
                                  progress)
     clock = {"fit_declared": time.perf_counter() - start}
     state, log = search(setup, state0, screen_top, clock)
+    state = _stand_ins(setup, state0, state, log)
     # what the search spent outside screening and refits: the backward step and swaps
     clock["revise"] = time.perf_counter() - start - sum(clock.values())
     clock["total"] = time.perf_counter() - start
@@ -514,6 +523,45 @@ def _backward(setup: Setup, state: ModelState, log: dict[str, Any]) -> ModelStat
     return state
 
 
+def _stand_ins(setup: Setup, state0: ModelState, state: ModelState, log: dict[str, Any]
+               ) -> ModelState:
+    """Stage 5b: the new effects, together, must explain more of the declared model's misfit
+    than the structure they leave beside it. Each passed its own test on a slice of the
+    misfit; when more is left than they explain, and no catalog effect explains the rest,
+    they are a partial stand-in for a cause the catalog lacks (an armature reaction taken
+    for a warm-up of the winding): reported as such, kept out of the netlist."""
+    new = [c for c in state.chosen if not c.correction]
+    if not new:
+        return state
+    gain, left = explained_and_left(setup, state0, state)
+    log["named_share"] = gain / (gain + left) if gain + left > 0 else 1.0
+    if left <= gain:
+        return state
+    keep = [c for c in state.chosen if c.correction]
+    reduced = state0
+    if keep:
+        raw = _base_raw(state, keep)
+        gone = {n for c in new for n in c.candidate.free}
+        free = [n for n in state.free if n not in gone]
+        params = {k: v for k, v in state.params.items() if k not in gone}
+        try:
+            fit = refit(setup, compile_raw(raw), free, params, state.bounds, nfev=20)
+        except CircuitsimError:
+            return state  # no model without them to report: they stay, as they were found
+        reduced = ModelState(raw, compile_raw(raw), free, dict(fit.params), fit,
+                             state.bounds, keep, state.base_raw)
+    names = ", ".join(f"{c.candidate.effect} on {c.candidate.target}" for c in new)
+    why = (f"a partial stand-in: {names} would explain {log['named_share']:.0%} of the "
+           f"structure the declared model misses, and leave the rest -- more than they "
+           f"explain -- that no catalog effect explains; not accepted")
+    setup.log(why)
+    log["stand_ins"] = why
+    for c in new:
+        log["rejected"].append({"effect": c.candidate.effect, "target": c.candidate.target,
+                                "reason": why})
+    return reduced
+
+
 def _base_raw(state: ModelState, chosen: list[Choice]):
     """The declared netlist with the given choices' patches, in order."""
     raw = state.base_raw
@@ -568,6 +616,10 @@ def report(setup: Setup, state0: ModelState, state: ModelState, log: dict[str, A
                 f"{choice.candidate.key} is the same circuit as {', '.join(sorted(set(twins)))}"
                 f" (the elements carry the same current): the data cannot tell them apart")
     rest = remaining(setup, state)
+    if "stand_ins" in log:  # what a catalog effect would have explained of it
+        rest["note"] += f" ({log['stand_ins']})"
+        rest["stand_ins"] = log["stand_ins"]
+    rest["named_share"] = log.get("named_share")
     analysis0 = analyse(state0.model, setup.record, fit0, setup.probes)
     analysis1 = analyse(state.model, setup.record, final, setup.probes)
     raw = _with_values(state.raw, final.params)
