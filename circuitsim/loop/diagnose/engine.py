@@ -500,17 +500,9 @@ def _backward(setup: Setup, state: ModelState, log: dict[str, Any]) -> ModelStat
     """Stage 5: re-test each earlier choice with the others present; drop one whose removal
     costs less than the BIC margin (a stand-in for an effect accepted later)."""
     for i, choice in enumerate(state.chosen[:-1]):
-        others = [c for j, c in enumerate(state.chosen) if j != i]
-        raw = _base_raw(state, others)
-        gone = set(choice.candidate.free)
-        free = [n for n in state.free if n not in gone]
-        params = {k: v for k, v in state.params.items() if k not in gone}
-        try:
-            fit = refit(setup, compile_raw(raw), free, params, state.bounds, nfev=20)
-        except CircuitsimError:
+        reduced = _without(setup, state, [c for j, c in enumerate(state.chosen) if j != i])
+        if reduced is None:
             continue
-        reduced = ModelState(raw, None, free, dict(fit.params), fit, state.bounds, others,
-                             state.base_raw)
         verdict = judge(setup, reduced, Trial((choice.candidate,), state.fit))
         if verdict.delta_bic >= -BIC_MARGIN:
             setup.log(f"dropped {choice.candidate.key}: with the later effects in place it "
@@ -518,9 +510,24 @@ def _backward(setup: Setup, state: ModelState, log: dict[str, Any]) -> ModelStat
             log["rejected"].append({"effect": choice.candidate.effect,
                                     "target": choice.candidate.target,
                                     "reason": "dropped by the backward step: " + verdict.note})
-            reduced.model = compile_raw(raw)
             return _backward(setup, reduced, log)
     return state
+
+
+def _without(setup: Setup, state: ModelState, keep: list[Choice]) -> ModelState | None:
+    """The model with only the choices ``keep``, refitted from the values it has (None when
+    the refit fails)."""
+    raw = _base_raw(state, keep)
+    gone = {n for c in state.chosen if c not in keep for n in c.candidate.free}
+    free = [n for n in state.free if n not in gone]
+    params = {k: v for k, v in state.params.items() if k not in gone}
+    model = compile_raw(raw)
+    try:
+        fit = refit(setup, model, free, params, state.bounds, nfev=20)
+    except CircuitsimError:
+        return None
+    return ModelState(raw, model, free, dict(fit.params), fit, state.bounds, keep,
+                      state.base_raw)
 
 
 def _stand_ins(setup: Setup, state0: ModelState, state: ModelState, log: dict[str, Any]
@@ -538,18 +545,9 @@ def _stand_ins(setup: Setup, state0: ModelState, state: ModelState, log: dict[st
     if left <= gain:
         return state
     keep = [c for c in state.chosen if c.correction]
-    reduced = state0
-    if keep:
-        raw = _base_raw(state, keep)
-        gone = {n for c in new for n in c.candidate.free}
-        free = [n for n in state.free if n not in gone]
-        params = {k: v for k, v in state.params.items() if k not in gone}
-        try:
-            fit = refit(setup, compile_raw(raw), free, params, state.bounds, nfev=20)
-        except CircuitsimError:
-            return state  # no model without them to report: they stay, as they were found
-        reduced = ModelState(raw, compile_raw(raw), free, dict(fit.params), fit,
-                             state.bounds, keep, state.base_raw)
+    reduced = _without(setup, state, keep) if keep else state0
+    if reduced is None:
+        return state  # no model without them to report: they stay, as they were found
     names = ", ".join(f"{c.candidate.effect} on {c.candidate.target}" for c in new)
     why = (f"a partial stand-in: {names} would explain {log['named_share']:.0%} of the "
            f"structure the declared model misses, and leave the rest -- more than they "
