@@ -360,8 +360,10 @@ def report(entries: list[dict], title: str) -> tuple[int, int]:
         nf = res.get("noise_floor", {}).get("after", {})
         rem = res.get("remaining", {})
         if rem.get("named_share") is not None:  # the named effects against what they leave
-            print(f"    the effects found explain {rem['named_share']:.0%} of the structure the "
-                  "declared model misses")
+            who = "a partial stand-in (not accepted) would" if rem.get("stand_ins") else \
+                "the effects found"
+            print(f"    {who} explain {rem['named_share']:.0%} of the structure the declared "
+                  "model misses")
         print(f"    error {res['error_before']:.4g} -> {res['error_after']:.4g}; noise floor "
               + ", ".join(f"{p} {v:.3g}" for p, v in nf.items() if v is not None)
               + f"; structure remains: {bool(rem.get('structure'))}"

@@ -172,10 +172,13 @@ def _remaining(diag: Diagnosis) -> str:
             (f"order {ln['order']['order']:g} of {ln['order']['shaft']}" if "order" in ln
              else f"{ln['frequency']:.4g} Hz") + f" ({ln['share']:.0%})" for ln in e["lines"])
         when = ", ".join(f"{a:.3g}-{b:.3g} s" for a, b in e["timing"]["strongest"])
+        grows = ", ".join(f"{f['signal']} ({f['rank_correlation']:.2f})"
+                          for f in e.get("follows") or []) or "-"
         rows.append(f"<tr><td>{html.escape(p)}</td><td>{e['structured_share']:.1%}</td>"
                     f"<td>{html.escape(e['timing']['kind'])}</td><td>{html.escape(when)}</td>"
-                    f"<td>{html.escape(lines)}</td></tr>")
+                    f"<td>{html.escape(grows)}</td><td>{html.escape(lines)}</td></tr>")
     return ("<h2>What remains</h2><p>" + html.escape(str(rest.get("note", ""))) +
             "</p><table border=\"1\"><tr><th>probe</th><th>structure share</th><th>kind</th>"
-            "<th>strongest</th><th>lines (share of the structure)</th></tr>" + "".join(rows) +
+            "<th>strongest</th><th>grows with (rank correlation)</th>"
+            "<th>lines (share of the structure)</th></tr>" + "".join(rows) +
             "</table>")

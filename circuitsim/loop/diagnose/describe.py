@@ -2,7 +2,8 @@
 
 Never a catalog label: the probe it lives in, whether its lines are locked to a shaft's angle
 (orders) or to time (Hz), whether it is transient or steady, its main lines with their share
-of the structure, and when in the record it is strongest -- what a person needs to name it.
+of the structure, when in the record it is strongest, and what it grows with (a probe's
+magnitude or its rate of change, or time) -- what a person needs to name it.
 """
 
 from __future__ import annotations
@@ -19,6 +20,11 @@ from circuitsim.loop.diagnose.residual import ORDER_TOL, ljung_box
 
 WINDOWS = 10  # time windows for "when in the record"
 MIN_SHARE = 0.02  # structure below this share of a probe's whitened residual is not reported
+#: Windows over which the residual's excess power is ranked against the operating point, and
+#: the rank correlation it must reach to be reported as following it (of 20 windows, a
+#: chance correlation this high has odds of about 1e-5 per signal).
+FOLLOW_WINDOWS = 20
+FOLLOW_RHO = 0.8
 
 
 def remaining(setup: Setup, state: ModelState) -> dict[str, Any]:
@@ -36,7 +42,8 @@ def remaining(setup: Setup, state: ModelState) -> dict[str, Any]:
         _, pval = ljung_box(e)
         entry = {"structured_share": share, "white_after_prewhitening": pval > 1e-3,
                  "noise_ar_order": len(whiten[p].a), "lines": _lines(lines, shafts),
-                 "timing": _timing(setup.record.t, r)}
+                 "timing": _timing(setup.record.t, r),
+                 "follows": _follows(setup, state, r, setup.weights.get(p, 0.0))}
         if share >= MIN_SHARE or pval <= 1e-3:
             probes[p] = entry
     structure = bool(probes)
@@ -96,6 +103,55 @@ def _timing(t: np.ndarray, r: np.ndarray) -> dict[str, Any]:
                           for i in strong[:3]]}
 
 
+def _follows(setup: Setup, state: ModelState, r: np.ndarray, sigma: float
+             ) -> list[dict[str, Any]]:
+    """What the residual's excess power over the noise (``sigma`` [probe unit]) rises with
+    across the record: a probe's simulated magnitude, its rate of change, or time -- the
+    signals whose rank correlation over ``FOLLOW_WINDOWS`` windows reaches ``FOLLOW_RHO``, the
+    strongest first (at most two). A field weakening with current, a loss growing with
+    speed, a lag seen at every step: each leaves its mark where its driver is large."""
+    from scipy.stats import spearmanr
+
+    edges = np.linspace(0, r.size, FOLLOW_WINDOWS + 1).astype(int)
+    if np.min(np.diff(edges)) < 3:
+        return []
+    t = np.asarray(setup.record.t, float)
+
+    def per_window(x: np.ndarray) -> np.ndarray:
+        return np.array([float(np.mean(x[a:b])) for a, b in itertools.pairwise(edges)])
+
+    power = per_window(np.square(r)) - sigma ** 2
+    drivers = {"time": t}
+    for q in setup.probes:
+        try:
+            x = np.asarray(state.fit.sim[q], float)
+        except KeyError:
+            continue
+        drivers[f"|{q}|"] = np.abs(x)
+        drivers[f"|d{q}/dt|"] = np.abs(np.gradient(x, t))
+    found = []
+    for name, x in drivers.items():
+        level = per_window(x)
+        if np.ptp(level) <= 1e-12 * max(float(np.max(np.abs(level))), 1e-300):
+            continue  # a signal constant over the record cannot rank anything
+        rho = float(spearmanr(level, power).statistic)
+        if math.isfinite(rho) and rho >= FOLLOW_RHO:
+            found.append({"signal": name, "rank_correlation": rho})
+    # the strongest two: a field weakening shows at high current, and so at every step
+    return sorted(found, key=lambda f: -f["rank_correlation"])[:2]
+
+
+def _follow_text(entry: dict[str, Any]) -> str:
+    follows = entry.get("follows") or []
+    signals = [f"{f['signal']} ({f['rank_correlation']:.2f})" for f in follows
+               if f["signal"] != "time"]
+    verb = "are" if len(signals) > 1 else "is"
+    parts = [f"largest where {' and '.join(signals)} {verb} large"] if signals else []
+    parts += [f"grows through the record ({f['rank_correlation']:.2f})" for f in follows
+              if f["signal"] == "time"]
+    return ("; " + ", ".join(parts) + " (rank correlation over the record)") if parts else ""
+
+
 def _note(probes: dict[str, Any]) -> str:
     if not probes:
         return "nothing significant remains: the residual is noise"
@@ -109,6 +165,7 @@ def _note(probes: dict[str, Any]) -> str:
         span = "; strongest " + ", ".join(f"{a:.3g}-{b:.3g} s" for a, b in when["strongest"]) \
             if when["strongest"] else ""
         parts.append(f"{p}: {e['structured_share']:.0%} of its residual is structure, "
-                     f"{when['kind']}{span}" + (f"; lines at {lines}" if lines else "") +
+                     f"{when['kind']}{span}" + _follow_text(e) +
+                     (f"; lines at {lines}" if lines else "") +
                      ("" if e["white_after_prewhitening"] else "; not white"))
     return "something remains that no catalog effect explains -- " + " | ".join(parts)

@@ -66,6 +66,14 @@ from circuitsim.solve import ahead
 
 SCREEN_TOP = 3  # candidates refitted with full simulation per round
 MAX_COMBINATIONS = 10  # joint swaps tried after an acceptance
+#: Share of the declared model's misfit (explained + structure left) the named effects must
+#: explain to be findings: twice what they leave. A label is what an engineer patches into
+#: the netlist, so it must be the main account of the misfit; below this share the effects
+#: are still reported, with their share, as a partial stand-in -- nothing a person could use
+#: is lost, and no wrong physics is written. Real data with a known model-form remainder
+#: (EMPS, asymmetric friction left) gives 0.87; every benchmark record whose truth the
+#: catalog holds gives 0.99 or more.
+NAMED_SHARE_MIN = 2.0 / 3.0
 
 
 def diagnose(netlist, record, free: Sequence[str] = (), *, probes: Sequence[str] | None = None,
@@ -532,17 +540,18 @@ def _without(setup: Setup, state: ModelState, keep: list[Choice]) -> ModelState 
 
 def _stand_ins(setup: Setup, state0: ModelState, state: ModelState, log: dict[str, Any]
                ) -> ModelState:
-    """Stage 5b: the new effects, together, must explain more of the declared model's misfit
-    than the structure they leave beside it. Each passed its own test on a slice of the
-    misfit; when more is left than they explain, and no catalog effect explains the rest,
-    they are a partial stand-in for a cause the catalog lacks (an armature reaction taken
-    for a warm-up of the winding): reported as such, kept out of the netlist."""
+    """Stage 5b: the new effects, together, must explain at least ``NAMED_SHARE_MIN`` of the
+    declared model's misfit (what they explain plus the structure they leave beside it).
+    Each passed its own test on a slice of the misfit; when they explain less, and no
+    catalog effect explains the rest, they are a partial stand-in for a cause the catalog
+    lacks (an armature reaction taken for a warm-up of the winding): reported as such, kept
+    out of the netlist."""
     new = [c for c in state.chosen if not c.correction]
     if not new:
         return state
     gain, left = explained_and_left(setup, state0, state)
     log["named_share"] = gain / (gain + left) if gain + left > 0 else 1.0
-    if left <= gain:
+    if log["named_share"] >= NAMED_SHARE_MIN:
         return state
     keep = [c for c in state.chosen if c.correction]
     reduced = _without(setup, state, keep) if keep else state0
@@ -550,8 +559,8 @@ def _stand_ins(setup: Setup, state0: ModelState, state: ModelState, log: dict[st
         return state  # no model without them to report: they stay, as they were found
     names = ", ".join(f"{c.candidate.effect} on {c.candidate.target}" for c in new)
     why = (f"a partial stand-in: {names} would explain {log['named_share']:.0%} of the "
-           f"structure the declared model misses, and leave the rest -- more than they "
-           f"explain -- that no catalog effect explains; not accepted")
+           f"structure the declared model misses, and leave the rest -- more than half what "
+           f"they explain -- that no catalog effect explains; not accepted")
     setup.log(why)
     log["stand_ins"] = why
     for c in new:
