@@ -275,7 +275,8 @@ def test_effects_that_explain_less_than_they_leave_are_a_partial_stand_in(a, b):
     a square wave switched on at 1 s (amplitude b, what no candidate explained): the share
     explained is sum(A^2) / (sum(A^2) + sum(B^2)) within 0.05 after prewhitening, and the
     effect is kept when it is 0.8 and reported as a partial stand-in, the declared model
-    kept, when it is 0.55 (the larger part, but not twice the rest) or 0.2."""
+    kept, when it is 0.55 (the larger part, but not twice the rest) or 0.2 -- unless the
+    search stopped at its limit of effects."""
     from types import SimpleNamespace
 
     from circuitsim.loop.diagnose.context import Choice, ModelState
@@ -287,7 +288,8 @@ def test_effects_that_explain_less_than_they_leave_are_a_partial_stand_in(a, b):
     line, square = a * np.sin(2 * np.pi * 37 * t), b * np.sign(np.sin(2 * np.pi * 5 * t)) * \
         (t > 1.0)
     said: list[str] = []
-    setup = SimpleNamespace(probes=("x",), record=SimpleNamespace(t=t), log=said.append)
+    setup = SimpleNamespace(probes=("x",), record=SimpleNamespace(t=t), log=said.append,
+                            max_effects=4)
     effect = SimpleNamespace(effect="sensor-offset", target="x", free={"o": (0.0, -1, 1)})
     before = ModelState(None, None, [], {}, SimpleNamespace(residuals={"x": noise + line +
                                                                         square}), {})
@@ -306,6 +308,11 @@ def test_effects_that_explain_less_than_they_leave_are_a_partial_stand_in(a, b):
                                     "reason": log["stand_ins"]}]
         assert (f"partial stand-in: sensor-offset on x would explain "
                 f"{log['named_share']:.0%}") in said[0]
+        # a search stopped at its limit of effects never learnt that the rest is not the
+        # catalog's: what it found is kept, with its share
+        setup.max_effects = 1
+        log = {"rejected": []}
+        assert _stand_ins(setup, before, after, log) is after and not log["rejected"]
 
 
 def test_what_remains_is_said_to_grow_with_the_signal_that_drives_it():

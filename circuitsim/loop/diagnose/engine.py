@@ -543,7 +543,8 @@ def _stand_ins(setup: Setup, state0: ModelState, state: ModelState, log: dict[st
     """Stage 5b: the new effects, together, must explain at least ``NAMED_SHARE_MIN`` of the
     declared model's misfit (what they explain plus the structure they leave beside it).
     Each passed its own test on a slice of the misfit; when they explain less, and no
-    catalog effect explains the rest, they are a partial stand-in for a cause the catalog
+    catalog effect explains the rest (the search ended for want of one, not at its limit of
+    effects), they are a partial stand-in for a cause the catalog
     lacks (an armature reaction taken for a warm-up of the winding): reported as such, kept
     out of the netlist."""
     new = [c for c in state.chosen if not c.correction]
@@ -552,6 +553,12 @@ def _stand_ins(setup: Setup, state0: ModelState, state: ModelState, log: dict[st
     gain, left = explained_and_left(setup, state0, state)
     log["named_share"] = gain / (gain + left) if gain + left > 0 else 1.0
     if log["named_share"] >= NAMED_SHARE_MIN:
+        return state
+    if len(new) >= setup.max_effects:
+        # the search stopped at the cap, not for want of a candidate: the rest may well be
+        # the catalog's, so nothing says these are stand-ins (the share is reported)
+        setup.log(f"the effects found explain {log['named_share']:.0%} of the structure; the "
+                  f"search stopped at its limit of {setup.max_effects} effects")
         return state
     keep = [c for c in state.chosen if c.correction]
     reduced = _without(setup, state, keep) if keep else state0
