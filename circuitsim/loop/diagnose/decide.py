@@ -3,7 +3,9 @@
 The decision (see ``noise``): the BIC of prewhitened residuals falls by more than
 ``BIC_MARGIN``; the candidate explains at least ``STRUCTURE_SHARE`` of the structure the
 residual holds (its significant spectral lines), so that a slice of an effect outside the
-catalog is no confident attribution; and no parameter of it ends on a bound of its physical
+catalog is no confident attribution -- or, for a harmonic of a shaft's angle, most of the
+line at its own order and little else (a machine's cogging orders are each a minority of the
+whole); and no parameter of it ends on a bound of its physical
 range, nor do its parameters together leave it (a candidate's ``limit``): an effect that
 only fits there is a stand-in for something else.
 """
@@ -27,12 +29,14 @@ from circuitsim.loop.diagnose.context import (
     weighted,
     weighted_sse,
 )
+from circuitsim.loop.diagnose.describe import shaft_frequencies
 from circuitsim.loop.diagnose.noise import (
     delta_bic,
     significant_lines,
     transient_excess,
     whiteners_of,
 )
+from circuitsim.loop.diagnose.residual import ORDER_TOL
 from circuitsim.loop.diagnose.screen import on_waveform
 
 BIC_MARGIN = 10.0  # "very strong" evidence on the Kass-Raftery scale
@@ -45,6 +49,13 @@ STRUCTURE_SHARE = 0.3  # share of the residual's significant structure an effect
 #: resonance) can then look like most of what is left.
 LARGE_EXCESS = 9.0
 EXCESS_SHARE = 0.1
+#: A harmonic of a shaft's angle claims one line. Where the structure is many lines (the
+#: cogging orders of a slotted machine, each a minority of the whole), it passes instead when
+#: it explains at least this share of the structure at its own order on a steadily turning
+#: shaft, and its own line is at least this share of what it explains (it fixes that line,
+#: not a slice of something else). The set of effects is judged whole at the end
+#: (engine._stand_ins).
+OWN_LINE_SHARE = 0.5
 
 
 @dataclass
@@ -62,6 +73,14 @@ class Trial:
     sse_after: float = 0.0
     floor: float = 0.0  # the weighted sum of squares the noise alone would give
     evidence: dict[str, Any] = field(default_factory=dict)
+    own_line: float = 0.0  # a harmonic's: the structure at its own order(s) [noise units]
+    gain: float = 0.0  # what it explains [noise units]
+
+    @property
+    def fixes_its_line(self) -> bool:
+        """A harmonic that explains most of the line at its own order and little else."""
+        return self.own_line > 0 and self.gain >= OWN_LINE_SHARE * self.own_line and \
+            self.own_line >= OWN_LINE_SHARE * self.gain
 
     @property
     def small_of_large(self) -> bool:
@@ -72,8 +91,9 @@ class Trial:
 
     @property
     def passed(self) -> bool:
-        return self.delta_bic < -BIC_MARGIN and self.share >= STRUCTURE_SHARE and \
-            not self.at_bound and not self.beyond and not self.small_of_large
+        line = self.fixes_its_line
+        return self.delta_bic < -BIC_MARGIN and (self.share >= STRUCTURE_SHARE or line) and \
+            not self.at_bound and not self.beyond and (line or not self.small_of_large)
 
     @property
     def key(self) -> str:
@@ -134,15 +154,20 @@ def judge(setup: Setup, state: ModelState, trial: Trial) -> Trial:
            for p in probes}
     k = sum(len(c.free) for c in trial.candidates)
     trial.delta_bic = delta_bic(new, old, setup.n, k, probes)
-    gain = structured = 0.0
+    gain = structured = own = 0.0
+    dt = float(np.mean(np.diff(setup.record.t)))
+    orders = _own_frequencies(state, trial, dt * len(setup.record.t))
     for p in probes:
         e = whiten[p].apply(state.fit.residuals[p])
         var = max(new[p] / max(e.size, 1), 1e-300)  # the probe's whitened noise variance
-        lines = significant_lines(e, float(np.mean(np.diff(setup.record.t))))
+        lines = significant_lines(e, dt)
         gain += (old[p] - new[p]) / var
         # structure: steady lines or a transient, whichever holds more
         structured += max(lines.structured, transient_excess(e)) / var
+        own += sum(float(np.sum(lines.excess[np.abs(lines.freqs - f) <= tol]))
+                   for f, tol in orders) / var
     trial.share = gain / structured if structured > 0 else (1.0 if gain > 0 else 0.0)
+    trial.gain, trial.own_line = gain, own
     trial.at_bound = _at_bound(trial)
     trial.beyond = "; ".join(filter(None, (c.limit(trial.fit.params) for c in trial.candidates
                                            if c.limit is not None)))
@@ -171,6 +196,21 @@ def explained_and_left(setup: Setup, before: ModelState, after: ModelState
     return gain, left
 
 
+def _own_frequencies(state: ModelState, trial: Trial, duration: float
+                     ) -> list[tuple[float, float]]:
+    """(frequency [Hz], tolerance [Hz]) of each harmonic candidate's order on every shaft
+    turning steadily in the model as it stands; none unless every candidate is a harmonic."""
+    orders = [c.fixed.get("order") for c in trial.candidates]
+    if not orders or any(k is None for k in orders):
+        return []
+    out = []
+    for fs, steady in shaft_frequencies(state).values():
+        if steady and fs != 0.0:
+            out += [(abs(k * fs), max(ORDER_TOL * abs(k * fs), 1.5 / duration))
+                    for k in orders]
+    return out
+
+
 def _at_bound(trial: Trial) -> tuple[str, ...]:
     """Parameters that end on a bound other than their null value (the physical range's
     edge): the effect fits only by being pushed against it."""
@@ -192,6 +232,9 @@ def _note(trial: Trial) -> str:
         return f"fits only beyond its physical range: {trial.beyond}"
     if trial.delta_bic >= -BIC_MARGIN:
         return f"not significant (ΔBIC {trial.delta_bic:.1f} on prewhitened residuals)"
+    if trial.fixes_its_line and (trial.small_of_large or trial.share < STRUCTURE_SHARE):
+        return (f"ΔBIC {trial.delta_bic:.1f}, explains {trial.gain / trial.own_line:.0%} of "
+                f"the line at its order ({trial.share:.0%} of all the structure)")
     if trial.small_of_large:
         return (f"significant (ΔBIC {trial.delta_bic:.1f}) but removes only "
                 f"{(trial.sse_before - trial.sse_after) / (trial.sse_before - trial.floor):.0%}"

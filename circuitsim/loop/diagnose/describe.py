@@ -31,7 +31,7 @@ def remaining(setup: Setup, state: ModelState) -> dict[str, Any]:
     """The structure left in the final model's residual, per probe, in plain terms."""
     whiten = whiteners_of(state.fit.residuals, setup.probes)
     dt = float(np.mean(np.diff(setup.record.t)))
-    shafts = _shaft_frequencies(state)
+    shafts = shaft_frequencies(state)
     probes = {}
     for p in setup.probes:
         r = np.asarray(state.fit.residuals[p], float)
@@ -50,7 +50,7 @@ def remaining(setup: Setup, state: ModelState) -> dict[str, Any]:
     return {"structure": structure, "probes": probes, "note": _note(probes)}
 
 
-def _shaft_frequencies(state: ModelState) -> dict[str, tuple[float, bool]]:
+def shaft_frequencies(state: ModelState) -> dict[str, tuple[float, bool]]:
     """Per shaft: its mean rotation frequency [rev/s] and whether it is steady enough for
     a line to be read as an order."""
     out = {}

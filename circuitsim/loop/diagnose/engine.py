@@ -67,13 +67,10 @@ from circuitsim.solve import ahead
 SCREEN_TOP = 3  # candidates refitted with full simulation per round
 MAX_COMBINATIONS = 10  # joint swaps tried after an acceptance
 #: Share of the declared model's misfit (explained + structure left) the named effects must
-#: explain to be findings: twice what they leave. A label is what an engineer patches into
-#: the netlist, so it must be the main account of the misfit; below this share the effects
-#: are still reported, with their share, as a partial stand-in -- nothing a person could use
-#: is lost, and no wrong physics is written. Real data with a known model-form remainder
-#: (EMPS, asymmetric friction left) gives 0.87; every benchmark record whose truth the
-#: catalog holds gives 0.99 or more.
-NAMED_SHARE_MIN = 2.0 / 3.0
+#: explain to be findings: more than they leave. (Twice what they leave, tried after the
+#: blind miss d11 at 0.55, drops the four cogging orders of the ODrive's real log at 0.61:
+#: a real machine leaves structure no catalog names, and this share cannot tell the two.)
+NAMED_SHARE_MIN = 0.5
 
 
 def diagnose(netlist, record, free: Sequence[str] = (), *, probes: Sequence[str] | None = None,
@@ -566,8 +563,8 @@ def _stand_ins(setup: Setup, state0: ModelState, state: ModelState, log: dict[st
         return state  # no model without them to report: they stay, as they were found
     names = ", ".join(f"{c.candidate.effect} on {c.candidate.target}" for c in new)
     why = (f"a partial stand-in: {names} would explain {log['named_share']:.0%} of the "
-           f"structure the declared model misses, and leave the rest -- more than half what "
-           f"they explain -- that no catalog effect explains; not accepted")
+           f"structure the declared model misses, and leave the rest -- more than they "
+           f"explain -- that no catalog effect explains; not accepted")
     setup.log(why)
     log["stand_ins"] = why
     for c in new:
