@@ -340,3 +340,26 @@ def test_what_remains_is_said_to_grow_with_the_signal_that_drives_it():
     assert "grows through the record" in _follow_text({"follows": found})
     assert _follows(setup, state, noise, 1.0) == []
     assert _follow_text({"follows": []}) == ""
+
+
+def test_a_harmonic_passes_by_fixing_the_line_at_its_own_order():
+    """A machine's cogging orders are each a minority of the structure: a harmonic passes
+    when it explains most of the line at its own order and little else (gain and own line
+    within a factor 2 of each other), even below the share of the whole and beside a large
+    residual; a broad effect, or a harmonic whose gain lies mostly elsewhere, does not."""
+    from types import SimpleNamespace
+
+    from circuitsim.loop.diagnose.decide import OWN_LINE_SHARE, STRUCTURE_SHARE, Trial
+
+    def trial(gain, own, share):
+        t = Trial((SimpleNamespace(key="cogging:rotor:7"),), None, delta_bic=-3000.0,
+                  share=share, sse_before=1e6, sse_after=1e6 - gain, floor=1e3)
+        t.gain, t.own_line = gain, own
+        return t
+
+    line = trial(900.0, 1000.0, 0.2)
+    assert line.small_of_large and line.share < STRUCTURE_SHARE  # what failed it before
+    assert line.fixes_its_line and line.passed
+    assert not trial(900.0, 0.0, 0.2).passed  # no line at its order: the old rules hold
+    assert not trial(OWN_LINE_SHARE * 1000.0 * 0.9, 1000.0, 0.2).passed  # half its line
+    assert not trial(3000.0, 1000.0, 0.2).passed  # its gain lies mostly elsewhere
