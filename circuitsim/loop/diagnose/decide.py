@@ -32,8 +32,10 @@ from circuitsim.loop.diagnose.context import (
 from circuitsim.loop.diagnose.describe import shaft_frequencies
 from circuitsim.loop.diagnose.noise import (
     delta_bic,
+    memory_whiteners,
     significant_lines,
     transient_excess,
+    whitened_sse,
     whiteners_of,
 )
 from circuitsim.loop.diagnose.residual import ORDER_TOL
@@ -73,6 +75,8 @@ class Trial:
     sse_after: float = 0.0
     floor: float = 0.0  # the weighted sum of squares the noise alone would give
     evidence: dict[str, Any] = field(default_factory=dict)
+    #: ΔBIC with the noise's long memory taken out first (-inf: none found, or not run)
+    memory_bic: float = -math.inf
     own_line: float = 0.0  # a harmonic's: the structure at its own order(s) [noise units]
     gain: float = 0.0  # what it explains [noise units]
 
@@ -92,7 +96,8 @@ class Trial:
     @property
     def passed(self) -> bool:
         line = self.fixes_its_line
-        return self.delta_bic < -BIC_MARGIN and (self.share >= STRUCTURE_SHARE or line) and \
+        return self.delta_bic < -BIC_MARGIN and self.memory_bic < -BIC_MARGIN and \
+            (self.share >= STRUCTURE_SHARE or line) and \
             not self.at_bound and not self.beyond and (line or not self.small_of_large)
 
     @property
@@ -154,6 +159,14 @@ def judge(setup: Setup, state: ModelState, trial: Trial) -> Trial:
            for p in probes}
     k = sum(len(c.free) for c in trial.candidates)
     trial.delta_bic = delta_bic(new, old, setup.n, k, probes)
+    if trial.delta_bic < -BIC_MARGIN:
+        # a noise with long memory (1/f) rises at low frequencies past what the AR filter
+        # follows: the test is repeated with that memory taken out, and must pass too (a
+        # gate only: candidates are still ranked by the AR test, as before)
+        memory = memory_whiteners(trial.fit.residuals, probes)
+        if any(w.d for w in memory.values()):
+            trial.memory_bic = delta_bic(whitened_sse(trial.fit.residuals, memory, probes),
+                                         state.whitened(setup, memory), setup.n, k, probes)
     gain = structured = own = 0.0
     dt = float(np.mean(np.diff(setup.record.t)))
     orders = _own_frequencies(state, trial, dt * len(setup.record.t))
@@ -232,6 +245,9 @@ def _note(trial: Trial) -> str:
         return f"fits only beyond its physical range: {trial.beyond}"
     if trial.delta_bic >= -BIC_MARGIN:
         return f"not significant (ΔBIC {trial.delta_bic:.1f} on prewhitened residuals)"
+    if trial.memory_bic >= -BIC_MARGIN:
+        return (f"not significant once the noise's long memory is taken out (ΔBIC "
+                f"{trial.memory_bic:.1f}; {trial.delta_bic:.1f} with the AR filter alone)")
     if trial.fixes_its_line and (trial.small_of_large or trial.share < STRUCTURE_SHARE):
         return (f"ΔBIC {trial.delta_bic:.1f}, explains {trial.gain / trial.own_line:.0%} of "
                 f"the line at its order ({trial.share:.0%} of all the structure)")

@@ -34,13 +34,17 @@ LINE_FALSE_ALARM = 0.01  # chance that pure noise shows one "significant" line i
 
 @dataclass(frozen=True)
 class Whitener:
-    """An AR(p) prewhitening filter e[n] = r[n] + a1 r[n-1] + ... + ap r[n-p]."""
+    """An AR(p) prewhitening filter e[n] = r[n] + a1 r[n-1] + ... + ap r[n-p], after a
+    fractional difference (1 - B)^d when the noise has long memory (``d`` > 0)."""
 
     a: tuple[float, ...]  # (a1 .. ap); () is white
     sigma: float  # innovation standard deviation [probe unit]
+    d: float = 0.0  # fractional order of the long memory taken out first [-]
 
     def apply(self, r: np.ndarray) -> np.ndarray:
         r = np.asarray(r, float)
+        if self.d:
+            r = fractional_difference(r, self.d)
         if not self.a:
             return r
         p = len(self.a)
@@ -92,6 +96,53 @@ def fit_whitener(r: np.ndarray, max_order: int = MAX_AR_ORDER) -> Whitener:
         if bic < best[0] - 2.0:
             best = (bic, tuple(float(v) for v in a), err)
     return Whitener(best[1], float(math.sqrt(best[2])))
+
+
+def memory_order(r: np.ndarray) -> float:
+    """The fractional order d of a residual's long memory (its spectrum rising as f^-2d
+    towards zero frequency: 1/f noise is d = 0.5), by the log-periodogram regression of
+    Geweke and Porter-Hudak on the lowest sqrt(n) frequencies; 0 unless it exceeds twice
+    its standard error pi / sqrt(24 m). An AR filter of low order cannot follow such a rise,
+    and what lives at those frequencies -- a gain on a slow speed profile, an offset, a
+    drift -- then looks far more certain than it is."""
+    x = np.asarray(r, float) - float(np.mean(r))
+    n = x.size
+    m = int(math.sqrt(n))
+    if m < 8:
+        return 0.0
+    power = np.abs(np.fft.rfft(x)[1:m + 1]) ** 2
+    if np.any(power <= 0.0):
+        return 0.0
+    lam = 2.0 * math.pi * np.arange(1, m + 1) / n
+    z = np.log(4.0 * np.sin(lam / 2.0) ** 2)
+    z = z - z.mean()
+    d = -float(z @ (np.log(power) - np.mean(np.log(power))) / (z @ z))
+    return min(d, 0.49) if d > 2.0 * math.pi / math.sqrt(24.0 * m) else 0.0
+
+
+def fractional_difference(r: np.ndarray, d: float) -> np.ndarray:
+    """(1 - B)^d r: the binomial weights pi_k = pi_(k-1) (k - 1 - d) / k over the whole
+    record, applied as a causal convolution (by FFT)."""
+    r = np.asarray(r, float)
+    n = r.size
+    k = np.arange(1, n)
+    w = np.concatenate([[1.0], np.cumprod((k - 1 - d) / k)])
+    size = 1 << int(2 * n - 1).bit_length()
+    return np.fft.irfft(np.fft.rfft(r, size) * np.fft.rfft(w, size), size)[:n]
+
+
+def memory_whiteners(residuals: Mapping[str, np.ndarray], probes: Sequence[str]
+                     ) -> dict[str, Whitener]:
+    """Per probe, the long-memory whitener: the fractional difference of the residual's
+    ``memory_order``, then the AR filter of what it leaves (the plain AR filter where the
+    residual has no long memory)."""
+    out = {}
+    for p in probes:
+        r = _quiet(np.asarray(residuals[p], float))
+        d = memory_order(r)
+        base = fit_whitener(fractional_difference(r, d) if d else r)
+        out[p] = Whitener(base.a, base.sigma, d)
+    return out
 
 
 def whitened_sse(residuals: Mapping[str, np.ndarray], whiteners: Mapping[str, Whitener],
