@@ -54,3 +54,16 @@ def test_the_memory_whitener_leaves_a_long_memory_noise_white():
     assert memory.d > 0.3
     assert low_to_mid(plain) > 4.0
     assert low_to_mid(memory.apply(r)) < min(3.0, 0.5 * low_to_mid(plain))
+
+
+def test_a_residual_full_of_structure_is_not_given_a_long_memory():
+    """Where a residual is mostly structure, a low-frequency rise in it is taken for that
+    structure (a slow shaft's cogging orders), not for the noise's memory: the whitener
+    keeps d = 0 there, and takes the memory out of the same noise without the lines."""
+    rng = np.random.default_rng(4)
+    n = 20000
+    t = np.arange(n)
+    noise = fractional_difference(rng.normal(size=n), -0.45)
+    lines = sum(2.0 * np.sin(2 * np.pi * f * t + f) for f in (0.021, 0.037, 0.052, 0.11))
+    assert memory_whiteners({"x": noise}, ["x"])["x"].d > 0.3
+    assert memory_whiteners({"x": noise + lines}, ["x"])["x"].d == 0.0

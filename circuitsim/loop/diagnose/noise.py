@@ -26,6 +26,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.ndimage import median_filter
 
 MAX_AR_ORDER = 6
 TIME_WINDOWS = 20  # windows for telling a transient from the typical residual
@@ -101,8 +102,8 @@ def fit_whitener(r: np.ndarray, max_order: int = MAX_AR_ORDER) -> Whitener:
 def memory_order(r: np.ndarray) -> float:
     """The fractional order d of a residual's long memory (its spectrum rising as f^-2d
     towards zero frequency: 1/f noise is d = 0.5), by the log-periodogram regression of
-    Geweke and Porter-Hudak on the lowest sqrt(n) frequencies; 0 unless it exceeds twice
-    its standard error pi / sqrt(24 m). An AR filter of low order cannot follow such a rise,
+    Geweke and Porter-Hudak on the lowest sqrt(n) frequencies, lines left out; 0 unless it
+    exceeds twice its standard error pi / sqrt(24 m). An AR filter of low order cannot follow such a rise,
     and what lives at those frequencies -- a gain on a slow speed profile, an offset, a
     drift -- then looks far more certain than it is."""
     x = np.asarray(r, float) - float(np.mean(r))
@@ -113,11 +114,18 @@ def memory_order(r: np.ndarray) -> float:
     power = np.abs(np.fft.rfft(x)[1:m + 1]) ** 2
     if np.any(power <= 0.0):
         return 0.0
-    lam = 2.0 * math.pi * np.arange(1, m + 1) / n
+    # lines are structure, not memory (a slow shaft's cogging orders sit among these bins):
+    # bins above the line threshold over their neighbours' median are left out
+    local = median_filter(power, size=9, mode="nearest") / math.log(2.0)
+    keep = power <= line_threshold(m) * local
+    if keep.sum() < 8:
+        return 0.0
+    lam = 2.0 * math.pi * np.arange(1, m + 1)[keep] / n
     z = np.log(4.0 * np.sin(lam / 2.0) ** 2)
     z = z - z.mean()
-    d = -float(z @ (np.log(power) - np.mean(np.log(power))) / (z @ z))
-    return min(d, 0.49) if d > 2.0 * math.pi / math.sqrt(24.0 * m) else 0.0
+    logp = np.log(power[keep])
+    d = -float(z @ (logp - logp.mean()) / (z @ z))
+    return min(d, 0.49) if d > 2.0 * math.pi / math.sqrt(24.0 * keep.sum()) else 0.0
 
 
 def fractional_difference(r: np.ndarray, d: float) -> np.ndarray:
@@ -135,14 +143,28 @@ def memory_whiteners(residuals: Mapping[str, np.ndarray], probes: Sequence[str]
                      ) -> dict[str, Whitener]:
     """Per probe, the long-memory whitener: the fractional difference of the residual's
     ``memory_order``, then the AR filter of what it leaves (the plain AR filter where the
-    residual has no long memory)."""
+    residual has no long memory, or holds more structure than ``MEMORY_STRUCTURE_MAX``)."""
     out = {}
     for p in probes:
         r = _quiet(np.asarray(residuals[p], float))
-        d = memory_order(r)
+        d = memory_order(r) if _noise_like(r) else 0.0
         base = fit_whitener(fractional_difference(r, d) if d else r)
         out[p] = Whitener(base.a, base.sigma, d)
     return out
+
+
+#: Share of a residual's whitened sum of squares that may be structure (lines, a transient)
+#: for a low-frequency rise in it to be read as the noise's long memory: in a residual full
+#: of structure the rise is that structure (a slow shaft's cogging orders crowd the lowest
+#: bins of the ODrive log, smeared by its speed ripple past any line test) and taking it out
+#: would hide it.
+MEMORY_STRUCTURE_MAX = 0.1
+
+
+def _noise_like(r: np.ndarray) -> bool:
+    e = fit_whitener(r).apply(r)
+    lines = significant_lines(e, 1.0)
+    return max(lines.structured, transient_excess(e)) <= MEMORY_STRUCTURE_MAX * lines.total
 
 
 def whitened_sse(residuals: Mapping[str, np.ndarray], whiteners: Mapping[str, Whitener],
