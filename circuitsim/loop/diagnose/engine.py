@@ -424,28 +424,32 @@ def _swap(setup: Setup, state: ModelState, log: dict[str, Any]) -> ModelState:
     # with one effect, its round already compared the alternatives in the same company
     if len(state.chosen) < 2 or not combos or len(combos) >= MAX_COMBINATIONS:
         return state
-    best, best_w = state, None
+    best, best_gain = state, -BIC_MARGIN
+    own = whiteners_of(state.fit.residuals, setup.probes)
     gains: dict[str, float] = {}
     for combo in combos:
         trial = _refit_choices(setup, state, list(combo), log)
         if trial is None:
             continue
-        w = whiteners_of(trial.fit.residuals, setup.probes)
         extra = len(trial.free) - len(state.free)  # parameters the swap adds (or removes)
-        gain = delta_bic(trial.whitened(setup, w), state.whitened(setup, w), setup.n, extra,
-                         setup.probes)
+        # the two models are not nested: a swap must win through either's noise filter (its
+        # own alone favours the model whose residual that filter was learnt on)
+        gain = max(delta_bic(trial.whitened(setup, w), state.whitened(setup, w), setup.n,
+                             extra, setup.probes)
+                   for w in (whiteners_of(trial.fit.residuals, setup.probes), own))
         gains[" + ".join(c.candidate.key for c in combo)] = gain
         setup.log("  swap " + " + ".join(c.candidate.key for c in combo) + f": ΔBIC {gain:.1f}")
-        ref = best.whitened(setup, w)
-        if delta_bic(trial.whitened(setup, w), ref, setup.n, len(trial.free) - len(best.free),
-                     setup.probes) < (-BIC_MARGIN if best is state else 0.0):
-            best, best_w = trial, w
-    if best is state or best_w is None:
+        # every swap is measured against the model as it stands: comparing swaps with one
+        # another through different filters is not transitive and could end on one worse
+        # than the model
+        if gain < best_gain:
+            best, best_gain = trial, gain
+    if best is state:
         return state
     name = " + ".join(c.candidate.key for c in best.chosen)
     setup.log(f"revised: {name} replaces " + " + ".join(c.candidate.key for c in state.chosen))
     for other, g in gains.items():
-        if other != name and g - gains[name] < BIC_MARGIN:
+        if other != name and 0.0 <= g - gains[name] < BIC_MARGIN and g < -BIC_MARGIN:
             log["indistinct"].append(f"{name} and {other} explain this record almost equally "
                                      f"well (ΔBIC {gains[name]:.1f} vs {g:.1f}): the data "
                                      f"cannot tell them apart")
