@@ -363,3 +363,27 @@ def test_a_harmonic_passes_by_fixing_the_line_at_its_own_order():
     assert not trial(900.0, 0.0, 0.2).passed  # no line at its order: the old rules hold
     assert not trial(OWN_LINE_SHARE * 1000.0 * 0.9, 1000.0, 0.2).passed  # half its line
     assert not trial(3000.0, 1000.0, 0.2).passed  # its gain lies mostly elsewhere
+
+
+def test_a_harmonic_is_judged_on_the_line_of_its_own_shaft_counted_once():
+    """A cogging order of the rotor looks for its line at k times the rotor's rotation
+    frequency [Hz] only (not the load's, behind a 7:1 gear, whose order 1 would be the
+    rotor's order 1); overlapping windows count a line once."""
+    from types import SimpleNamespace
+
+    from circuitsim.loop.diagnose.decide import Trial, _line_excess, _own_frequencies
+    from circuitsim.loop.diagnose.noise import Lines
+
+    t = np.linspace(0.0, 10.0, 1001)
+    w = np.full(t.size, 2 * np.pi * 10.0)  # 10 rev/s
+    state = SimpleNamespace(model=SimpleNamespace(shafts=("rotor", "load")),
+                            fit=SimpleNamespace(sim={"rotor.w": w, "load.w": w / 7}))
+    cand = SimpleNamespace(target="rotor", fixed={"order": 7}, key="cogging:rotor:7")
+    windows = _own_frequencies(state, Trial((cand,), None), 10.0)
+    assert windows == [(pytest.approx(70.0), pytest.approx(0.03 * 70.0))]
+    lines = Lines(np.array([10.0, 69.0, 70.0, 72.5]), np.array([5.0, 1.0, 2.0, 4.0]), 100.0,
+                  12.0)
+    assert _line_excess(lines, windows) == pytest.approx(3.0)  # 69 and 70 Hz; not 72.5
+    assert _line_excess(lines, windows + windows) == pytest.approx(3.0)
+    broad = SimpleNamespace(target="rotor", fixed={}, key="viscous-friction:rotor")
+    assert _own_frequencies(state, Trial((broad,), None), 10.0) == []

@@ -1,7 +1,8 @@
 """Stages: refit a screened candidate with full simulation, and decide on it.
 
 The decision (see ``noise``): the BIC of prewhitened residuals falls by more than
-``BIC_MARGIN``; the candidate explains at least ``STRUCTURE_SHARE`` of the structure the
+``BIC_MARGIN``, and again with the noise's long memory taken out first where the residual,
+otherwise noise, has one; the candidate explains at least ``STRUCTURE_SHARE`` of the structure the
 residual holds (its significant spectral lines), so that a slice of an effect outside the
 catalog is no confident attribution -- or, for a harmonic of a shaft's angle, most of the
 line at its own order and little else (a machine's cogging orders are each a minority of the
@@ -159,6 +160,7 @@ def judge(setup: Setup, state: ModelState, trial: Trial) -> Trial:
            for p in probes}
     k = sum(len(c.free) for c in trial.candidates)
     trial.delta_bic = delta_bic(new, old, setup.n, k, probes)
+    trial.memory_bic = -math.inf
     if trial.delta_bic < -BIC_MARGIN:
         # a noise with long memory (1/f) rises at low frequencies past what the AR filter
         # follows: the test is repeated with that memory taken out, and must pass too (a
@@ -177,8 +179,7 @@ def judge(setup: Setup, state: ModelState, trial: Trial) -> Trial:
         gain += (old[p] - new[p]) / var
         # structure: steady lines or a transient, whichever holds more
         structured += max(lines.structured, transient_excess(e)) / var
-        own += sum(float(np.sum(lines.excess[np.abs(lines.freqs - f) <= tol]))
-                   for f, tol in orders) / var
+        own += _line_excess(lines, orders) / var
     trial.share = gain / structured if structured > 0 else (1.0 if gain > 0 else 0.0)
     trial.gain, trial.own_line = gain, own
     trial.at_bound = _at_bound(trial)
@@ -211,17 +212,30 @@ def explained_and_left(setup: Setup, before: ModelState, after: ModelState
 
 def _own_frequencies(state: ModelState, trial: Trial, duration: float
                      ) -> list[tuple[float, float]]:
-    """(frequency [Hz], tolerance [Hz]) of each harmonic candidate's order on every shaft
-    turning steadily in the model as it stands; none unless every candidate is a harmonic."""
-    orders = [c.fixed.get("order") for c in trial.candidates]
-    if not orders or any(k is None for k in orders):
+    """(frequency [Hz], tolerance [Hz]) of each harmonic candidate's order on its own shaft
+    (its target, when that is a shaft; else every shaft) where it turns steadily in the model
+    as it stands; none unless every candidate is a harmonic. The tolerance is the order's
+    spread (ORDER_TOL) or the record's resolution, whichever is wider: on a record of few
+    turns it spans neighbouring orders (the ODrive log holds 1.1 turns)."""
+    if not trial.candidates or any("order" not in c.fixed for c in trial.candidates):
         return []
+    shafts = shaft_frequencies(state)
     out = []
-    for fs, steady in shaft_frequencies(state).values():
-        if steady and fs != 0.0:
-            out += [(abs(k * fs), max(ORDER_TOL * abs(k * fs), 1.5 / duration))
-                    for k in orders]
+    for c in trial.candidates:
+        own = {c.target: shafts[c.target]} if c.target in shafts else shafts
+        k = c.fixed["order"]
+        out += [(abs(k * fs), max(ORDER_TOL * abs(k * fs), 1.5 / duration))
+                for fs, steady in own.values() if steady and fs != 0.0]
     return out
+
+
+def _line_excess(lines, windows: list[tuple[float, float]]) -> float:
+    """The excess power of the significant lines inside any of ``windows`` (each counted
+    once) [as lines.excess]."""
+    if not windows or lines.freqs.size == 0:
+        return 0.0
+    inside = np.any([np.abs(lines.freqs - f) <= tol for f, tol in windows], axis=0)
+    return float(np.sum(lines.excess[inside]))
 
 
 def _at_bound(trial: Trial) -> tuple[str, ...]:

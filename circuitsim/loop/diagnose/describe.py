@@ -120,7 +120,9 @@ def _follows(setup: Setup, state: ModelState, r: np.ndarray, sigma: float
     def per_window(x: np.ndarray) -> np.ndarray:
         return np.array([float(np.mean(x[a:b])) for a, b in itertools.pairwise(edges)])
 
-    power = per_window(np.square(r)) - sigma ** 2
+    # the power above the noise level: ranks of raw power would follow a noise whose level
+    # scales with a probe as readily as structure
+    power = np.clip(per_window(np.square(r)) - sigma ** 2, 0.0, None)
     drivers = {"time": t}
     for q in setup.probes:
         try:
@@ -147,8 +149,10 @@ def _follow_text(entry: dict[str, Any]) -> str:
                if f["signal"] != "time"]
     verb = "are" if len(signals) > 1 else "is"
     parts = [f"largest where {' and '.join(signals)} {verb} large"] if signals else []
-    parts += [f"grows through the record ({f['rank_correlation']:.2f})" for f in follows
-              if f["signal"] == "time"]
+    timed = [f"grows through the record ({f['rank_correlation']:.2f})" for f in follows
+             if f["signal"] == "time"]
+    # the strongest first, as _follows orders them
+    parts = timed + parts if follows and follows[0]["signal"] == "time" else parts + timed
     return ("; " + ", ".join(parts) + " (rank correlation over the record)") if parts else ""
 
 

@@ -432,8 +432,8 @@ def _swap(setup: Setup, state: ModelState, log: dict[str, Any]) -> ModelState:
         if trial is None:
             continue
         extra = len(trial.free) - len(state.free)  # parameters the swap adds (or removes)
-        # the two models are not nested: a swap must win through either's noise filter (its
-        # own alone favours the model whose residual that filter was learnt on)
+        # the two models are not nested: a swap must win through both noise filters (its own
+        # alone favours the model whose residual that filter was learnt on)
         gain = max(delta_bic(trial.whitened(setup, w), state.whitened(setup, w), setup.n,
                              extra, setup.probes)
                    for w in (whiteners_of(trial.fit.residuals, setup.probes), own))

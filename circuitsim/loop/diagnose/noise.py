@@ -14,9 +14,11 @@ missing effect as "predictable noise" and hide it.
 The decision never divides by an estimate of the noise floor: a few-percent error of that
 estimate is as large as a marginal effect's whole signature. The likelihood ratio uses the
 ratio of each probe's whitened sums of squares (a profile likelihood with a free noise
-variance per probe), which needs no floor at all; the share of *structure* an effect explains
-is measured against the significant lines of the whitened residual's periodogram, whose
-background is a median over the spectrum, not a global floor.
+variance per probe), which needs no floor at all -- and is taken a second time with the
+noise's long memory (a 1/f rise an AR filter of low order cannot follow) removed first by a
+fractional difference, where the residual is otherwise noise; the share of *structure* an
+effect explains is measured against the significant lines of the whitened residual's
+periodogram, whose background is a median over the spectrum, not a global floor.
 """
 
 from __future__ import annotations
@@ -103,9 +105,9 @@ def memory_order(r: np.ndarray) -> float:
     """The fractional order d of a residual's long memory (its spectrum rising as f^-2d
     towards zero frequency: 1/f noise is d = 0.5), by the log-periodogram regression of
     Geweke and Porter-Hudak on the lowest sqrt(n) frequencies, lines left out; 0 unless it
-    exceeds twice its standard error pi / sqrt(24 m). An AR filter of low order cannot follow such a rise,
-    and what lives at those frequencies -- a gain on a slow speed profile, an offset, a
-    drift -- then looks far more certain than it is."""
+    exceeds twice its standard error pi / sqrt(24 m). An AR filter of low order cannot
+    follow such a rise, and what lives at those frequencies -- a gain on a slow speed
+    profile, an offset, a drift -- then looks far more certain than it is."""
     x = np.asarray(r, float) - float(np.mean(r))
     n = x.size
     m = int(math.sqrt(n))
@@ -146,8 +148,9 @@ def memory_whiteners(residuals: Mapping[str, np.ndarray], probes: Sequence[str]
     residual has no long memory, or holds more structure than ``MEMORY_STRUCTURE_MAX``)."""
     out = {}
     for p in probes:
-        r = _quiet(np.asarray(residuals[p], float))
-        d = memory_order(r) if _noise_like(r) else 0.0
+        r = np.asarray(residuals[p], float)
+        quiet = _quiet(r)  # the memory is read where the residual is typical, as the AR is
+        d = memory_order(quiet) if _noise_like(quiet) else 0.0
         base = fit_whitener(fractional_difference(r, d) if d else r)
         out[p] = Whitener(base.a, base.sigma, d)
     return out
