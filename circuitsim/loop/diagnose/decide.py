@@ -169,17 +169,10 @@ def judge(setup: Setup, state: ModelState, trial: Trial) -> Trial:
         if any(w.d for w in memory.values()):
             trial.memory_bic = delta_bic(whitened_sse(trial.fit.residuals, memory, probes),
                                          state.whitened(setup, memory), setup.n, k, probes)
-    gain = structured = own = 0.0
     dt = float(np.mean(np.diff(setup.record.t)))
     orders = _own_frequencies(state, trial, dt * len(setup.record.t))
-    for p in probes:
-        e = whiten[p].apply(state.fit.residuals[p])
-        var = max(new[p] / max(e.size, 1), 1e-300)  # the probe's whitened noise variance
-        lines = significant_lines(e, dt)
-        gain += (old[p] - new[p]) / var
-        # structure: steady lines or a transient, whichever holds more
-        structured += max(lines.structured, transient_excess(e)) / var
-        own += _line_excess(lines, orders) / var
+    gain, structured, own = _in_noise_units(setup, whiten, old, new, state.fit.residuals,
+                                            orders)
     trial.share = gain / structured if structured > 0 else (1.0 if gain > 0 else 0.0)
     trial.gain, trial.own_line = gain, own
     trial.at_bound = _at_bound(trial)
@@ -199,15 +192,27 @@ def explained_and_left(setup: Setup, before: ModelState, after: ModelState
     whitened noise variance and measured as ``judge`` measures a trial."""
     whiten = whiteners_of(after.fit.residuals, setup.probes)
     old, new = before.whitened(setup, whiten), after.whitened(setup, whiten)
+    gain, left, _ = _in_noise_units(setup, whiten, old, new, after.fit.residuals)
+    return gain, left
+
+
+def _in_noise_units(setup: Setup, whiten, old: Mapping[str, float], new: Mapping[str, float],
+                    residuals, orders: list[tuple[float, float]] = ()
+                    ) -> tuple[float, float, float]:
+    """Summed over the probes, each in units of its whitened noise variance (the richer
+    model's whitened sum ``new`` per sample): the gain ``old - new``, the structure
+    ``residuals`` hold (steady lines or a transient, whichever holds more) and, of it, the
+    lines inside the ``orders`` windows (``_own_frequencies``)."""
     dt = float(np.mean(np.diff(setup.record.t)))
-    gain = left = 0.0
+    gain = structured = own = 0.0
     for p in setup.probes:
-        e = whiten[p].apply(after.fit.residuals[p])
-        var = max(new[p] / max(e.size, 1), 1e-300)
+        e = whiten[p].apply(residuals[p])
+        var = max(new[p] / max(e.size, 1), 1e-300)  # the probe's whitened noise variance
         lines = significant_lines(e, dt)
         gain += (old[p] - new[p]) / var
-        left += max(lines.structured, transient_excess(e)) / var
-    return gain, left
+        structured += max(lines.structured, transient_excess(e)) / var
+        own += _line_excess(lines, orders) / var
+    return gain, structured, own
 
 
 def _own_frequencies(state: ModelState, trial: Trial, duration: float
