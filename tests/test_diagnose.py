@@ -387,3 +387,83 @@ def test_a_harmonic_is_judged_on_the_line_of_its_own_shaft_counted_once():
     assert _line_excess(lines, windows + windows) == pytest.approx(3.0)
     broad = SimpleNamespace(target="rotor", fixed={}, key="viscous-friction:rotor")
     assert _own_frequencies(state, Trial((broad,), None), 10.0) == []
+
+
+def _split_case(delta, seed, phi=0.0):
+    """A residual of unit noise (AR(1) with ``phi``) plus a parameter that takes another value
+    (by ``delta``) from the middle of the record on, seen through a smooth sensitivity g,
+    less what the parameter's one value absorbs of it (as a fit leaves it)."""
+    from scipy.signal import lfilter
+
+    from circuitsim.loop.diagnose.stability import split_test
+
+    rng = np.random.default_rng(seed)
+    n = 8000
+    t = np.arange(n) / n
+    g = np.sin(2 * np.pi * 3 * t) + 0.5
+    noise = lfilter([1.0], [1.0, -phi], rng.normal(size=n)) * np.sqrt(1 - phi ** 2)
+    late = t >= 0.5
+    shifted = delta * g * (late - np.sum(g * g * late) / np.sum(g * g))
+    residual = {"x": noise + shifted}
+    dbic, gain = split_test(residual, [{"x": g}], {"x": 1.0}, ["x"])
+    return dbic, gain, shifted
+
+
+def test_parameters_that_change_within_the_record_are_seen_and_constant_ones_are_not():
+    """The split test (stability.split_test): a parameter that takes another value in the
+    second half of the record gains what that change puts into the residual, |delta g|^2 in
+    units of the noise (within 5 sigma of its cross term with the noise, 2 |delta g|); one
+    that stays constant gains chi^2 with 3 degrees of freedom (its mean 3) and never passes
+    the BIC margin, on white and on AR(1) noise."""
+    from circuitsim.loop.diagnose.decide import BIC_MARGIN
+
+    dbic, gain, shifted = _split_case(1.5, seed=3)
+    signal = float(shifted @ shifted)
+    assert signal > 3000
+    assert gain == pytest.approx(signal, abs=5 * 2 * np.sqrt(signal))
+    assert dbic < -BIC_MARGIN
+    for phi in (0.0, 0.8):
+        null = [_split_case(0.0, seed=s, phi=phi)[:2] for s in range(20)]
+        assert all(d > 0 for d, _ in null), null
+        assert np.mean([g for _, g in null]) == pytest.approx(3.0, abs=1.5)
+
+
+def test_an_effect_whose_parameters_are_not_constants_is_a_stand_in(monkeypatch):
+    """Stage 5c (engine._unstable): an effect whose per-quarter values gain a quarter of what
+    it explains, past the BIC margin, is kept out and reported; one that gains less (or not
+    significantly) stays, and so does the model when nothing is unstable."""
+    from types import SimpleNamespace
+
+    from circuitsim.loop.diagnose import engine
+    from circuitsim.loop.diagnose.context import Choice, ModelState
+    from circuitsim.loop.diagnose.stability import STABLE_SHARE, Stability
+
+    def effect(name):
+        return SimpleNamespace(effect=name, target="x", key=name, free={name: (0.0, 0, 1)})
+
+    drift, offset = effect("resistance-drift"), effect("sensor-offset")
+    verdicts = {"resistance-drift": Stability(-900.0, STABLE_SHARE * 1000 + 1, 1000.0),
+                "sensor-offset": Stability(-50.0, 0.1 * 500, 500.0)}
+    monkeypatch.setattr(engine, "stability", lambda s, st, c, own: verdicts[c.key])
+    kept: list = []
+
+    def without(setup, state, keep):
+        kept.append([c.candidate.key for c in keep])
+        return ModelState(None, None, [], {}, None, {}, keep)
+
+    monkeypatch.setattr(engine, "_without", without)
+    said: list[str] = []
+    setup = SimpleNamespace(log=said.append)
+    state = ModelState(None, None, [], {}, None, {}, [Choice(drift), Choice(offset)])
+    log = {"rejected": [], "trials": {k: SimpleNamespace(gain=v.own) for k, v in
+                                      verdicts.items()}}
+    out = engine._unstable(setup, None, state, log)
+    assert kept == [["sensor-offset"]] and [c.candidate.key for c in out.chosen] == \
+        ["sensor-offset"]
+    assert [r["effect"] for r in log["rejected"]] == ["resistance-drift"]
+    assert "resistance-drift on x" in log["stand_ins"] and "sensor-offset" not in \
+        log["stand_ins"]
+    verdicts["resistance-drift"] = Stability(-900.0, STABLE_SHARE * 1000 - 1, 1000.0)
+    log = {"rejected": [], "trials": {k: SimpleNamespace(gain=v.own) for k, v in
+                                      verdicts.items()}}
+    assert engine._unstable(setup, None, state, log) is state and not log["rejected"]

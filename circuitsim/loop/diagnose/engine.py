@@ -16,6 +16,9 @@ The stages, each a function of plain objects (``context``):
    two are tried together (one effect may have been absorbing two). ``_stand_ins``: at the
    end, effects that together explain less of the declared model's misfit than the structure
    they leave are a partial stand-in for a cause outside the catalog, and kept out.
+   ``_unstable``: an effect whose parameters, fitted on each quarter of the record, differ by
+   as much as a fair part of the effect (``stability``) fits such a cause only on average: it
+   is a stand-in too.
 6. ``describe.remaining`` -- what structure is left, in plain terms, never a catalog label.
 7. ``Diagnosis`` (``result``) -- the report: error before and after, effects, corrections,
    what could not be told apart, what was rejected and why, what remains.
@@ -61,6 +64,7 @@ from circuitsim.loop.diagnose.screen import (
     propose,
     screen_many,
 )
+from circuitsim.loop.diagnose.stability import stability
 from circuitsim.loop.effects import candidates
 from circuitsim.solve import ahead
 
@@ -107,6 +111,7 @@ def diagnose(netlist, record, free: Sequence[str] = (), *, probes: Sequence[str]
     clock = {"fit_declared": time.perf_counter() - start}
     state, log = search(setup, state0, screen_top, clock)
     state = _stand_ins(setup, state0, state, log)
+    state = _unstable(setup, state0, state, log)
     # what the search spent outside screening and refits: the backward step and swaps
     clock["revise"] = time.perf_counter() - start - sum(clock.values())
     clock["total"] = time.perf_counter() - start
@@ -577,6 +582,61 @@ def _stand_ins(setup: Setup, state0: ModelState, state: ModelState, log: dict[st
     return reduced
 
 
+def _unstable(setup: Setup, state0: ModelState, state: ModelState, log: dict[str, Any]
+              ) -> ModelState:
+    """Stage 5c: a new effect whose parameters are not constants of the record (fitted on
+    each quarter of it, they differ by as much as a fair part of the effect: ``stability``)
+    fits a cause outside the catalog only on average -- a warm-up of the winding in place of
+    an armature reaction. It is reported as a stand-in and kept out of the netlist; the
+    others stay, and are tested again without it (alone, one may now carry what it did)."""
+    if "stand_ins" in log:
+        return state
+    found: list[tuple[Choice, Any]] = []
+    while True:
+        unstable = _unstable_effects(setup, state, log)
+        if not unstable:
+            break
+        keep = [c for c in state.chosen if all(c is not u for u, _ in unstable)]
+        reduced = _without(setup, state, keep) if keep else state0
+        if reduced is None:
+            break
+        found += unstable
+        state = reduced
+    if not found:
+        return state
+    names = "; ".join(f"{c.candidate.effect} on {c.candidate.target} (fitted on each quarter "
+                      f"of the record on its own, it explains {v.gain / v.own:.0%} as much "
+                      f"again as with one set of values, ΔBIC {v.delta_bic:.0f})"
+                      for c, v in found)
+    why = (f"a stand-in whose parameters are not constants of the record: {names}; a "
+           f"physical effect's are, so it fits a cause outside the catalog only on average; "
+           f"not accepted")
+    setup.log(why)
+    log["stand_ins"] = why
+    for c, _ in found:
+        log["rejected"].append({"effect": c.candidate.effect, "target": c.candidate.target,
+                                "reason": why})
+    return state
+
+
+def _unstable_effects(setup: Setup, state: ModelState, log: dict[str, Any]
+                      ) -> list[tuple[Choice, Any]]:
+    """The new effects of ``state`` whose parameters are unstable, with their verdicts (each
+    verdict is kept in ``log['stability']`` for the report)."""
+    out = []
+    for c in state.chosen:
+        trial = log["trials"].get(c.candidate.key)
+        if c.correction or trial is None:
+            continue
+        verdict = stability(setup, state, c.candidate, trial.gain)
+        if verdict is None:
+            continue
+        log.setdefault("stability", {})[c.candidate.key] = verdict
+        if verdict.unstable:
+            out.append((c, verdict))
+    return out
+
+
 def _base_raw(state: ModelState, chosen: list[Choice]):
     """The declared netlist with the given choices' patches, in order."""
     raw = state.base_raw
@@ -621,7 +681,9 @@ def report(setup: Setup, state0: ModelState, state: ModelState, log: dict[str, A
              "structure_share": trial.share if trial else None,
              "sse_before": trial.sse_before if trial else None,
              "sse_after": trial.sse_after if trial else None,
-             "correction_of_declared_term": choice.correction})
+             "correction_of_declared_term": choice.correction,
+             "stability": (log.get("stability", {}).get(c.key).as_dict()
+                           if c.key in log.get("stability", {}) else None)})
         (corrections if choice.correction else accepted).append(entry)
     accepted = _merge_refinements(accepted)
     for choice in state.chosen:

@@ -1,0 +1,140 @@
+"""Stage: are an accepted effect's parameters constants of the record?
+
+A physical effect has the same parameters all through a record: a friction coefficient does
+not change between the run-up and the reversal. A catalog effect that stands in for a cause
+outside the catalog fits that cause only on average -- a warm-up of the winding taking the
+place of an armature reaction, whose size follows the current, not the clock -- and its best
+values then differ from one part of the record to the next.
+
+The test is the held-out-segment check of system identification (a Chow test), linearised
+about the final fit: the residual is regressed on the effect's sensitivities, once as they
+are and once with their own copy in each of ``SEGMENTS`` equal pieces of the record, on
+residuals prewhitened as the decisions are (``noise``). Two numbers come out: the BIC change
+of the extra parameters, and the gain in units of each probe's whitened noise variance. The
+effect is *unstable* when the gain is significant and at least ``STABLE_SHARE`` of what the
+effect itself explains: its parameters then vary by as much as a fair part of the effect.
+A small variation on a large effect (a real machine's cogging amplitude, a slightly
+misshapen brush drop) is what any model of measured data shows and is no verdict.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from circuitsim.loop.diagnose.context import ModelState, Setup, compile_raw, simulate_many
+from circuitsim.loop.diagnose.decide import BIC_MARGIN
+from circuitsim.loop.diagnose.noise import Whitener, delta_bic, whiteners_of
+
+SEGMENTS = 4  # equal pieces of the record, each with its own copy of the parameters
+#: Share of the effect's own gain that letting its parameters differ between the pieces must
+#: reach, besides passing the BIC margin, for the effect to be a stand-in (see the module
+#: docstring). Measured on the benchmark and the real logs: 0.1-1.4 % for effects of the
+#: right law (the ODrive's and the PMSM's cogging orders included), 81 % for the warm-up
+#: standing in for an armature reaction.
+STABLE_SHARE = 0.25
+MIN_SEGMENT = 20  # samples a piece needs for its own copy of the parameters to mean anything
+RELATIVE_STEP = 1e-3  # forward-difference step of a parameter, relative to its value
+
+
+@dataclass(frozen=True)
+class Stability:
+    """What letting an effect's parameters differ between pieces of the record gains."""
+
+    delta_bic: float  # BIC change of the per-piece copies [-]
+    gain: float  # their gain [units of the probes' whitened noise variance]
+    own: float  # what the effect itself explains [same units]
+
+    @property
+    def unstable(self) -> bool:
+        return self.delta_bic < -BIC_MARGIN and self.gain >= STABLE_SHARE * self.own
+
+    def as_dict(self) -> dict[str, float]:
+        return {"delta_bic": self.delta_bic, "gain": self.gain, "own_gain": self.own}
+
+
+def split_test(residuals: Mapping[str, np.ndarray], columns: Sequence[Mapping[str, np.ndarray]],
+               weights: Mapping[str, float], probes: Sequence[str],
+               segments: int = SEGMENTS) -> tuple[float, float]:
+    """(ΔBIC, gain [noise units]) of giving each sensitivity in ``columns`` (per probe, the
+    change of the model's output per unit parameter [probe unit]) its own copy in each of
+    ``segments`` equal pieces of the record, against the residual ``residuals`` (measured -
+    model [probe unit]) regressed on the columns as they are. The prewhitening filter is
+    learnt on the richer model's residual, as every decision's is (``noise``)."""
+    n = len(np.asarray(residuals[probes[0]]))
+    piece = np.minimum(np.arange(n) * segments // n, segments - 1)
+    whole = list(columns)
+    split = [{p: np.where(piece == s, c[p], 0.0) for p in probes}
+             for c in columns for s in range(1, segments)]
+    raw = _stack(residuals, probes, weights)
+    x = np.column_stack([_stack(c, probes, weights) for c in whole + split])
+    beta, *_ = np.linalg.lstsq(x, raw, rcond=None)
+    left = raw - x @ beta
+    whiten = whiteners_of({p: left[k * n:(k + 1) * n] for k, p in enumerate(probes)}, probes)
+
+    def stack(series: Mapping[str, np.ndarray]) -> np.ndarray:
+        return _stack(series, probes, weights, whiten)
+
+    r = stack(residuals)
+    sizes = [whiten[p].apply(np.zeros(n)).size for p in probes]
+    old = _probe_sse(r, np.column_stack([stack(c) for c in whole]), probes, sizes)
+    new = _probe_sse(r, np.column_stack([stack(c) for c in whole + split]), probes, sizes)
+    gain = sum((old[p] - new[p]) / max(new[p] / m, 1e-300) for p, m in zip(probes, sizes,
+                                                                           strict=True))
+    return delta_bic(new, old, n, len(split), probes), max(gain, 0.0)
+
+
+def _stack(series: Mapping[str, np.ndarray], probes: Sequence[str],
+           weights: Mapping[str, float], whiten: Mapping[str, Whitener] | None = None
+           ) -> np.ndarray:
+    """The probes' series, each prewhitened (when ``whiten``) and over its noise level."""
+    return np.concatenate([(whiten[p].apply(np.asarray(series[p], float)) if whiten else
+                            np.asarray(series[p], float)) / weights[p] for p in probes])
+
+
+def _probe_sse(r: np.ndarray, x: np.ndarray, probes: Sequence[str], sizes: Sequence[int]
+               ) -> dict[str, float]:
+    """Each probe's sum of squares of ``r`` less its least-squares fit on ``x``."""
+    beta, *_ = np.linalg.lstsq(x, r, rcond=None)
+    e = r - x @ beta
+    out, i = {}, 0
+    for p, m in zip(probes, sizes, strict=True):
+        out[p] = float(e[i:i + m] @ e[i:i + m])
+        i += m
+    return out
+
+
+def sensitivities(setup: Setup, state: ModelState, candidate
+                  ) -> list[dict[str, np.ndarray]] | None:
+    """Forward differences of the probes in each free parameter of ``candidate`` about the
+    fitted values, from one batched run (None when a run fails)."""
+    model = state.model or compile_raw(state.raw)
+    steps, points = [], [dict(state.params)]
+    for name in candidate.free:
+        v = float(state.params[name])
+        # a value of 0 has no scale of its own: a tenth of the screen's linear step
+        h = RELATIVE_STEP * abs(v) if v else 0.1 * candidate.steps.get(name, RELATIVE_STEP)
+        h = h if v + h <= state.bounds.get(name, (-np.inf, np.inf))[1] else -h
+        steps.append(h)
+        points.append({**state.params, name: v + h})
+    runs = simulate_many(setup, model, points)
+    if any(run is None for run in runs):
+        return None
+    base, *moved = runs
+    return [{p: (np.asarray(run[p], float) - np.asarray(base[p], float)) / h
+             for p in setup.probes} for run, h in zip(moved, steps, strict=True)]
+
+
+def stability(setup: Setup, state: ModelState, candidate, own: float) -> Stability | None:
+    """The stability of ``candidate``'s parameters in the fitted ``state`` (None when the
+    record is too short to split or a run fails); ``own``: what the effect explains [noise
+    units]."""
+    if setup.n < SEGMENTS * MIN_SEGMENT or not candidate.free:
+        return None
+    columns = sensitivities(setup, state, candidate)
+    if columns is None:
+        return None
+    dbic, gain = split_test(state.fit.residuals, columns, setup.weights, setup.probes)
+    return Stability(dbic, gain, own)
