@@ -120,7 +120,7 @@ def child(rid: str) -> int:
                            "error_after": a.error_after,
                            "evidence": {k: v for k, v in a.evidence.items()
                                         if k in ("delta_bic", "explained_fraction", "what",
-                                                 "revised")}}
+                                                 "revised", "stability")}}
                           for a in d.effects]
         out["corrections"] = [{"effect": a.effect, "target": a.target,
                                "parameters": dict(a.parameters), "stderr": dict(a.stderr)}
