@@ -467,3 +467,26 @@ def test_an_effect_whose_parameters_are_not_constants_is_a_stand_in(monkeypatch)
     log = {"rejected": [], "trials": {k: SimpleNamespace(gain=v.own) for k, v in
                                       verdicts.items()}}
     assert engine._unstable(setup, None, state, log) is state and not log["rejected"]
+
+
+def test_a_line_is_named_an_order_when_locked_to_a_shaft_that_changes_speed():
+    """describe._Locking: a shaft runs up to 40 rev/s, holds, and reverses to -25 rev/s. A
+    ripple at order 3 of its angle, whose time line sits at 120 Hz while it holds, is named
+    order 3 (angle-locked); a 120 Hz line fixed in time is named time-locked; structure that
+    only follows the speed profile is never named an order."""
+    from types import SimpleNamespace
+
+    from circuitsim.loop.diagnose.describe import _Locking
+
+    t = np.arange(40000) / 20000.0
+    rev = np.interp(t, [0.0, 0.4, 1.2, 1.6, 2.0], [0.0, 40.0, 40.0, -25.0, -25.0])
+    w = 2 * np.pi * rev
+    phi = np.concatenate([[0.0], np.cumsum(0.5 * (w[1:] + w[:-1]) * np.diff(t))])
+    state = SimpleNamespace(fit=SimpleNamespace(sim={"rotor.phi": phi, "rotor.w": w}))
+    noise = np.random.default_rng(4).normal(0.0, 0.05, t.size)
+    angle = _Locking(t, noise + 0.1 * np.sin(3 * phi + 0.3), state).order_of(120.0, ["rotor"])
+    assert angle == {"shaft": "rotor", "order": 3.0, "locking": "angle"}
+    fixed = _Locking(t, noise + 0.1 * np.sin(2 * np.pi * 120.0 * t), state)
+    assert fixed.order_of(120.0, ["rotor"]) == "time"
+    slow = _Locking(t, noise + 0.2 * w / np.max(w), state)
+    assert not isinstance(slow.order_of(2.0, ["rotor"]), dict)

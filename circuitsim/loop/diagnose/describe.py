@@ -15,7 +15,12 @@ from typing import Any
 import numpy as np
 
 from circuitsim.loop.diagnose.context import ModelState, Setup
-from circuitsim.loop.diagnose.noise import significant_lines, transient_excess, whiteners_of
+from circuitsim.loop.diagnose.noise import (
+    fit_whitener,
+    significant_lines,
+    transient_excess,
+    whiteners_of,
+)
 from circuitsim.loop.diagnose.residual import ORDER_TOL, ljung_box
 
 WINDOWS = 10  # time windows for "when in the record"
@@ -41,7 +46,8 @@ def remaining(setup: Setup, state: ModelState) -> dict[str, Any]:
         share = structured / lines.total if lines.total > 0 else 0.0
         _, pval = ljung_box(e)
         entry = {"structured_share": share, "white_after_prewhitening": pval > 1e-3,
-                 "noise_ar_order": len(whiten[p].a), "lines": _lines(lines, shafts),
+                 "noise_ar_order": len(whiten[p].a),
+                 "lines": _lines(lines, shafts, _Locking(setup.record.t, r, state)),
                  "timing": _timing(setup.record.t, r),
                  "follows": _follows(setup, state, r, setup.weights.get(p, 0.0))}
         if share >= MIN_SHARE or pval <= 1e-3:
@@ -66,7 +72,7 @@ def shaft_frequencies(state: ModelState) -> dict[str, tuple[float, bool]]:
     return out
 
 
-def _lines(lines, shafts) -> list[dict[str, Any]]:
+def _lines(lines, shafts, locking: _Locking) -> list[dict[str, Any]]:
     order = np.argsort(lines.excess)[::-1]
     out: list[dict[str, Any]] = []
     for k in order[:40]:
@@ -80,10 +86,99 @@ def _lines(lines, shafts) -> list[dict[str, Any]]:
                 kk = round(ratio * 2) / 2  # half orders too (a belt, a 2-pole slip)
                 if kk >= 0.5 and abs(ratio - kk) < ORDER_TOL * kk:
                     label["order"] = {"shaft": n, "order": kk}
+        if "order" not in label and f > 0:
+            unsteady = [n for n, (_, steady) in shafts.items() if not steady]
+            locked = locking.order_of(f, unsteady) if unsteady else "time"
+            if isinstance(locked, dict):
+                label["order"] = locked
+            else:
+                label["locking"] = locked
+        same = next((q for q in out if "order" in q and "order" in label and
+                     (q["order"]["shaft"], q["order"]["order"]) ==
+                     (label["order"]["shaft"], label["order"]["order"])), None)
+        if same is not None:  # an order swept through several bins is one line
+            same["share"] += label["share"]
+            continue
         out.append(label)
         if len(out) == 5:
             break
     return out
+
+
+class _Locking:
+    """Whether a line found in the time spectrum is locked to a shaft's angle when that shaft
+    does not turn steadily (it speeds up, reverses, stops): a harmonic of the angle then
+    sweeps through frequencies. Of the orders the line could be at one of the speeds the shaft
+    holds, one names it when (a) its sine and cosine of the angle explain more of the residual
+    than the line's own fixed-frequency sine and cosine (equal numbers of regressors: no
+    penalty needed), and (b) the residual, resampled on the angle the shaft travels (order
+    tracking; a reversal keeps the order), has a significant line there holding at least
+    ``SHARE`` of its structure, at an order of 1 or more. A line the fixed sine
+    explains better is locked to time; one that passes (a) alone cannot be told (slow structure
+    that follows the speed profile correlates with any low order)."""
+
+    QUANTILES = (0.1, 0.25, 0.5, 0.75, 0.9, 1.0)  # speeds of the turning shaft tried
+    SHARE = 0.25  # of the order-tracked structure the line at the order must hold
+
+    def __init__(self, t: np.ndarray, r: np.ndarray, state: ModelState):
+        self.t, self.r, self.sim = t, r - np.mean(r), state.fit.sim
+        self._tracked: dict[str, Any] = {}
+
+    def _explained(self, phase: np.ndarray) -> float:
+        x = np.column_stack([np.sin(phase), np.cos(phase)])
+        coef, *_ = np.linalg.lstsq(x, self.r, rcond=None)
+        return float(np.sum(np.square(x @ coef)))
+
+    def _order_lines(self, n: str, w: np.ndarray):
+        """Significant lines of the residual resampled on shaft ``n``'s travelled angle
+        [orders: cycles per turn] (None when it travels under two turns)."""
+        if n not in self._tracked:
+            moving = w > 0.1 * max(float(np.max(w)), 1e-300)
+            travel = np.concatenate([[0.0], np.cumsum(0.5 * (w[1:] + w[:-1]) *
+                                                       np.diff(self.t))])[moving]
+            keep = np.concatenate([[True], np.diff(travel) > 0])
+            travel, r = travel[keep], self.r[moving][keep]
+            out = None
+            if travel.size > 16 and travel[-1] - travel[0] >= 4 * math.pi:
+                grid = np.linspace(travel[0], travel[-1], travel.size)
+                x = np.interp(grid, travel, r)
+                x = x - np.polyval(np.polyfit(grid, x, 1), grid)
+                out = significant_lines(fit_whitener(x).apply(x),
+                                        (grid[1] - grid[0]) / (2 * math.pi))
+            self._tracked[n] = out
+        return self._tracked[n]
+
+    def order_of(self, f: float, shafts: list[str]) -> dict[str, Any] | str:
+        """{"shaft", "order", "locking": "angle"} when the line at ``f`` [Hz] is locked to
+        the angle of one of ``shafts``; "time" when it is locked to time; "" when the two
+        cannot be told apart."""
+        fixed, verdict = self._explained(2 * math.pi * f * self.t), "time"
+        best = None
+        for n in shafts:
+            try:
+                phi = np.asarray(self.sim[f"{n}.phi"], float)
+                w = np.abs(np.asarray(self.sim[f"{n}.w"], float))
+            except KeyError:
+                continue
+            turning = w[w > 0.1 * max(float(np.max(w)), 1e-300)]
+            if turning.size == 0 or np.ptp(phi) < 4 * math.pi:  # two turns at least
+                continue
+            freqs = np.quantile(turning, self.QUANTILES) / (2 * math.pi)
+            for kk in sorted({round(2 * f / fs) / 2 for fs in freqs if fs > 0}):
+                if kk < 1:  # slow structure that follows the profile fills the lowest
+                    continue
+                gain = self._explained(kk * phi)
+                if gain <= fixed:
+                    continue
+                verdict = ""
+                lines = self._order_lines(n, w)
+                if lines is None or lines.structured <= 0:
+                    continue
+                near = np.abs(lines.freqs - kk) <= max(ORDER_TOL * kk, 1.5 * _resolution(lines))
+                if float(np.sum(lines.excess[near])) >= self.SHARE * lines.structured and \
+                        (best is None or gain > best[0]):
+                    best = (gain, {"shaft": n, "order": kk, "locking": "angle"})
+        return verdict if best is None else best[1]
 
 
 def _resolution(lines) -> float:
@@ -162,8 +257,11 @@ def _note(probes: dict[str, Any]) -> str:
     parts = []
     for p, e in probes.items():
         lines = ", ".join(
-            (f"order {ln['order']['order']:g} of {ln['order']['shaft']}" if "order" in ln
-             else f"{ln['frequency']:.4g} Hz (time-locked)") + f" ({ln['share']:.0%})"
+            (f"order {ln['order']['order']:g} of {ln['order']['shaft']}" +
+             (" (angle-locked while it changes speed)" if ln["order"].get("locking") else "")
+             if "order" in ln
+             else f"{ln['frequency']:.4g} Hz" + (" (time-locked)" if ln.get("locking", "time")
+                                                  else "")) + f" ({ln['share']:.0%})"
             for ln in e["lines"][:3])
         when = e["timing"]
         span = "; strongest " + ", ".join(f"{a:.3g}-{b:.3g} s" for a, b in when["strongest"]) \
