@@ -48,6 +48,7 @@ in the loop. Effects (``fx`` keys, SI, all off by default):
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Mapping
 from pathlib import Path
@@ -181,7 +182,7 @@ def simulate(regime: str, t: np.ndarray | None = None, fx: Mapping[str, Any] | N
     fs = REGIMES[regime][0]
     hmax = 2.0 / fs
     xs = np.empty((t.size, x0.size))
-    for a, b in zip(edges[:-1], edges[1:]):
+    for a, b in itertools.pairwise(edges):
         last = b == edges[-1]
         sel = (t >= a) & ((t <= b) if last else (t < b))
         te = t[sel]
