@@ -152,7 +152,7 @@ class _Locking:
         """{"shaft", "order", "locking": "angle"} when the line at ``f`` [Hz] is locked to
         the angle of one of ``shafts``; "time" when it is locked to time; "" when the two
         cannot be told apart."""
-        fixed, verdict = self._explained(2 * math.pi * f * self.t), "time"
+        fixed, verdict = self._explained(2 * math.pi * f * self.t), ""
         best = None
         for n in shafts:
             try:
@@ -169,8 +169,9 @@ class _Locking:
                     continue
                 gain = self._explained(kk * phi)
                 if gain <= fixed:
+                    verdict = verdict or "time"  # the fixed sine explains more
                     continue
-                verdict = ""
+                verdict = "-"  # an order explains more: time-locked is ruled out
                 lines = self._order_lines(n, w)
                 if lines is None or lines.structured <= 0:
                     continue
@@ -178,7 +179,7 @@ class _Locking:
                 if float(np.sum(lines.excess[near])) >= self.SHARE * lines.structured and \
                         (best is None or gain > best[0]):
                     best = (gain, {"shaft": n, "order": kk, "locking": "angle"})
-        return verdict if best is None else best[1]
+        return verdict.strip("-") if best is None else best[1]
 
 
 def _resolution(lines) -> float:

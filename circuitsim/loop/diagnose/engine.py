@@ -596,9 +596,13 @@ def _unstable(setup: Setup, state0: ModelState, state: ModelState, log: dict[str
         unstable = _unstable_effects(setup, state, log)
         if not unstable:
             break
+        # the worst first: a right effect's per-quarter copies can soak up some of the same
+        # misfit, and it is judged again once the stand-in is out
+        unstable = [max(unstable, key=lambda cv: cv[1].gain / cv[1].own)]
         keep = [c for c in state.chosen if all(c is not u for u, _ in unstable)]
         reduced = _without(setup, state, keep) if keep else state0
         if reduced is None:
+            setup.log("the model without the unstable effect could not be refitted; it stays")
             break
         found += unstable
         state = reduced
@@ -626,7 +630,7 @@ def _unstable_effects(setup: Setup, state: ModelState, log: dict[str, Any]
     out = []
     for c in state.chosen:
         trial = log["trials"].get(c.candidate.key)
-        if c.correction or trial is None:
+        if c.correction or trial is None or trial.gain <= 0:
             continue
         verdict = stability(setup, state, c.candidate, trial.gain)
         if verdict is None:

@@ -115,7 +115,7 @@ def sensitivities(setup: Setup, state: ModelState, candidate
     for name in candidate.free:
         v = float(state.params[name])
         # a value of 0 has no scale of its own: a tenth of the screen's linear step
-        h = RELATIVE_STEP * abs(v) if v else 0.1 * candidate.steps.get(name, RELATIVE_STEP)
+        h = max(RELATIVE_STEP * abs(v), 0.1 * candidate.steps.get(name, 0.0)) or RELATIVE_STEP
         h = h if v + h <= state.bounds.get(name, (-np.inf, np.inf))[1] else -h
         steps.append(h)
         points.append({**state.params, name: v + h})
