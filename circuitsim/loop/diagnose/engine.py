@@ -596,9 +596,10 @@ def _unstable(setup: Setup, state0: ModelState, state: ModelState, log: dict[str
         unstable = _unstable_effects(setup, state, log)
         if not unstable:
             break
-        # the worst first: a right effect's per-quarter copies can soak up some of the same
-        # misfit, and it is judged again once the stand-in is out
-        unstable = [max(unstable, key=lambda cv: cv[1].gain / cv[1].own)]
+        # all that are flagged go together: dropping only the worst (the rest judged again
+        # without it) left fresh6's dead time named a brush drop once two sensor gains had
+        # gone, where dropping all three leaves it described. A right effect flagged beside a
+        # stand-in would be lost with it; no benchmark record shows that
         keep = [c for c in state.chosen if all(c is not u for u, _ in unstable)]
         reduced = _without(setup, state, keep) if keep else state0
         if reduced is None:
