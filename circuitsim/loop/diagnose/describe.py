@@ -152,8 +152,8 @@ class _Locking:
         """{"shaft", "order", "locking": "angle"} when the line at ``f`` [Hz] is locked to
         the angle of one of ``shafts``; "time" when it is locked to time; "" when the two
         cannot be told apart."""
-        fixed, verdict = self._explained(2 * math.pi * f * self.t), ""
-        best = None
+        fixed = self._explained(2 * math.pi * f * self.t)
+        best, compared, angle_won = None, False, False
         for n in shafts:
             try:
                 phi = np.asarray(self.sim[f"{n}.phi"], float)
@@ -168,10 +168,10 @@ class _Locking:
                 if kk < 1:  # slow structure that follows the profile fills the lowest
                     continue
                 gain = self._explained(kk * phi)
+                compared = True
                 if gain <= fixed:
-                    verdict = verdict or "time"  # the fixed sine explains more
                     continue
-                verdict = "-"  # an order explains more: time-locked is ruled out
+                angle_won = True  # an order explains more: time-locked is ruled out
                 lines = self._order_lines(n, w)
                 if lines is None or lines.structured <= 0:
                     continue
@@ -179,7 +179,9 @@ class _Locking:
                 if float(np.sum(lines.excess[near])) >= self.SHARE * lines.structured and \
                         (best is None or gain > best[0]):
                     best = (gain, {"shaft": n, "order": kk, "locking": "angle"})
-        return verdict.strip("-") if best is None else best[1]
+        if best is not None:
+            return best[1]
+        return "time" if compared and not angle_won else ""
 
 
 def _resolution(lines) -> float:
