@@ -428,6 +428,57 @@ def test_parameters_that_change_within_the_record_are_seen_and_constant_ones_are
         assert np.mean([g for _, g in null]) == pytest.approx(3.0, abs=1.5)
 
 
+def _band_case(delta, seed, phi=0.0):
+    """A residual of unit noise (AR(1) with ``phi``) plus a parameter that takes another value
+    (by ``delta``) in the upper half of a sensitivity's spectrum: g is a low-frequency and a
+    high-frequency part of equal energy (cosine-transform bins 2-40 and 400-800), and the
+    residual holds ``delta`` times the high part, less what the parameter's one value absorbs
+    of it (as a fit leaves it)."""
+    from scipy import fft
+
+    from circuitsim.loop.diagnose.stability import band_test
+
+    rng = np.random.default_rng(seed)
+    n = 8000
+    low, high = np.zeros(n), np.zeros(n)
+    low[2:40] = rng.normal(size=38)
+    high[400:800] = rng.normal(size=400)
+    low, high = fft.idct(low, norm="ortho"), fft.idct(high, norm="ortho")
+    high *= np.sqrt((low @ low) / (high @ high))
+    g = (low + high) / np.sqrt(low @ low) * 2.0
+    high = high / np.sqrt(low @ low) * 2.0
+    noise = lfilter_ar1(rng.normal(size=n), phi)
+    shifted = delta * (high - g * (g @ high) / (g @ g))
+    dbic, gain = band_test({"x": noise + shifted}, [{"x": g}], {"x": 1.0}, ["x"])
+    return dbic, gain, shifted
+
+
+def lfilter_ar1(x, phi):
+    """Unit-variance AR(1) noise with coefficient ``phi`` from white ``x``."""
+    from scipy.signal import lfilter
+
+    return lfilter([1.0], [1.0, -phi], x) * np.sqrt(1 - phi ** 2)
+
+
+def test_parameters_that_differ_between_frequency_bands_are_seen_and_constant_ones_are_not():
+    """The band test (stability.band_test): a parameter whose value differs between the low
+    and the high half of its sensitivity's spectrum gains what that difference puts into the
+    residual, |delta g_high|^2 in noise units (within 5 sigma of its cross term with the
+    noise); one with the same value at every frequency gains chi^2 with 3 degrees of freedom
+    (mean 3) and never passes the BIC margin, on white and on AR(1) noise."""
+    from circuitsim.loop.diagnose.decide import BIC_MARGIN
+
+    dbic, gain, shifted = _band_case(40.0, seed=5)
+    signal = float(shifted @ shifted)
+    assert signal > 3000
+    assert gain == pytest.approx(signal, abs=5 * 2 * np.sqrt(signal))
+    assert dbic < -BIC_MARGIN
+    for phi in (0.0, 0.8):
+        null = [_band_case(0.0, seed=s, phi=phi)[:2] for s in range(20)]
+        assert all(d > 0 for d, _ in null), null
+        assert np.mean([g for _, g in null]) == pytest.approx(3.0, abs=1.5)
+
+
 def test_an_effect_whose_parameters_are_not_constants_is_a_stand_in(monkeypatch):
     """Stage 5c (engine._unstable): an effect whose per-quarter values gain a quarter of what
     it explains, past the BIC margin, is kept out and reported; one that gains less (or not
@@ -463,7 +514,17 @@ def test_an_effect_whose_parameters_are_not_constants_is_a_stand_in(monkeypatch)
     assert [r["effect"] for r in log["rejected"]] == ["resistance-drift"]
     assert "resistance-drift on x" in log["stand_ins"] and "sensor-offset" not in \
         log["stand_ins"]
-    verdicts["resistance-drift"] = Stability(-900.0, STABLE_SHARE * 1000 - 1, 1000.0)
+    # the same share across frequency bands: a stand-in as well, said so
+    verdicts["resistance-drift"] = Stability(-900.0, 10.0, 1000.0, -400.0,
+                                             STABLE_SHARE * 1000 + 1)
+    log = {"rejected": [], "trials": {k: SimpleNamespace(gain=v.own) for k, v in
+                                      verdicts.items()}}
+    assert [c.candidate.key for c in engine._unstable(setup, None, state, log).chosen] == \
+        ["sensor-offset"]
+    assert "frequency content" in log["stand_ins"] and "quarter of the record" not in \
+        log["stand_ins"]
+    verdicts["resistance-drift"] = Stability(-900.0, STABLE_SHARE * 1000 - 1, 1000.0, -900.0,
+                                             STABLE_SHARE * 1000 - 1)
     log = {"rejected": [], "trials": {k: SimpleNamespace(gain=v.own) for k, v in
                                       verdicts.items()}}
     assert engine._unstable(setup, None, state, log) is state and not log["rejected"]

@@ -18,7 +18,8 @@ The stages, each a function of plain objects (``context``):
    they leave are a partial stand-in for a cause outside the catalog, and kept out.
    ``_unstable``: an effect whose parameters, fitted on each quarter of the record, differ by
    as much as a fair part of the effect (``stability``) fits such a cause only on average: it
-   is a stand-in too.
+   is a stand-in too; so is one whose values differ between bands of the record's spectrum
+   (a delay standing in for a lag).
 6. ``describe.remaining`` -- what structure is left, in plain terms, never a catalog label.
 7. ``Diagnosis`` (``result``) -- the report: error before and after, effects, corrections,
    what could not be told apart, what was rejected and why, what remains.
@@ -609,9 +610,7 @@ def _unstable(setup: Setup, state0: ModelState, state: ModelState, log: dict[str
         state = reduced
     if not found:
         return state
-    names = "; ".join(f"{c.candidate.effect} on {c.candidate.target} (fitted on each quarter "
-                      f"of the record on its own, it explains {v.gain / v.own:.0%} as much "
-                      f"again as with one set of values, ΔBIC {v.delta_bic:.0f})"
+    names = "; ".join(f"{c.candidate.effect} on {c.candidate.target} ({v.why()})"
                       for c, v in found)
     why = (f"a stand-in whose parameters are not constants of the record: {names}; a "
            f"physical effect's are, so it fits a cause outside the catalog only on average; "

@@ -15,6 +15,15 @@ effect is *unstable* when the gain is significant and at least ``STABLE_SHARE`` 
 effect itself explains: its parameters then vary by as much as a fair part of the effect.
 A small variation on a large effect (a real machine's cogging amplitude, a slightly
 misshapen brush drop) is what any model of measured data shows and is no verdict.
+
+The same holds across frequency: a physical effect's parameters are the same at every
+frequency in the record. A catalog effect standing in for a dynamic cause outside it -- a
+sensor delay for a sensor's first-order lag, a source resistance and two sensor delays for an
+LC input filter -- fits that cause's frequency response at one frequency only, and fitted on
+each part of the record's spectrum its values differ. The second split gives the sensitivities
+their own copy in each of ``BANDS`` frequency bands (cosine-transform bands, each holding an
+equal share of the effect's own sensitivity energy, so that every copy has as much to fit), and
+is judged by the same rule.
 """
 
 from __future__ import annotations
@@ -23,12 +32,14 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
+from scipy import fft
 
 from circuitsim.loop.diagnose.context import ModelState, Setup, compile_raw, simulate_many
 from circuitsim.loop.diagnose.decide import BIC_MARGIN
 from circuitsim.loop.diagnose.noise import Whitener, delta_bic, whiteners_of
 
 SEGMENTS = 4  # equal pieces of the record, each with its own copy of the parameters
+BANDS = 4  # frequency bands, each with an equal share of the effect's sensitivity energy
 #: Share of the effect's own gain that letting its parameters differ between the pieces must
 #: reach, besides passing the BIC margin, for the effect to be a stand-in (see the module
 #: docstring). Measured on the benchmark and the real logs: 0.1-1.4 % for effects of the
@@ -46,13 +57,40 @@ class Stability:
     delta_bic: float  # BIC change of the per-piece copies [-]
     gain: float  # their gain [units of the probes' whitened noise variance]
     own: float  # what the effect itself explains [same units]
+    band_delta_bic: float = 0.0  # BIC change of the per-band copies [-]
+    band_gain: float = 0.0  # their gain [same units as gain]
+
+    @property
+    def over_time(self) -> bool:
+        """The parameters differ between the quarters of the record."""
+        return self.delta_bic < -BIC_MARGIN and self.gain >= STABLE_SHARE * self.own
+
+    @property
+    def over_frequency(self) -> bool:
+        """The parameters differ between the bands of the record's spectrum."""
+        return (self.band_delta_bic < -BIC_MARGIN
+                and self.band_gain >= STABLE_SHARE * self.own)
 
     @property
     def unstable(self) -> bool:
-        return self.delta_bic < -BIC_MARGIN and self.gain >= STABLE_SHARE * self.own
+        return self.over_time or self.over_frequency
 
     def as_dict(self) -> dict[str, float]:
-        return {"delta_bic": self.delta_bic, "gain": self.gain, "own_gain": self.own}
+        return {"delta_bic": self.delta_bic, "gain": self.gain, "own_gain": self.own,
+                "band_delta_bic": self.band_delta_bic, "band_gain": self.band_gain}
+
+    def why(self) -> str:
+        """The split(s) that found the parameters unstable, in words."""
+        out = []
+        if self.over_time:
+            out.append(f"fitted on each quarter of the record on its own, it explains "
+                       f"{self.gain / self.own:.0%} as much again as with one set of values, "
+                       f"ΔBIC {self.delta_bic:.0f}")
+        if self.over_frequency:
+            out.append(f"fitted on each quarter of its frequency content on its own, it "
+                       f"explains {self.band_gain / self.own:.0%} as much again, ΔBIC "
+                       f"{self.band_delta_bic:.0f}")
+        return "; ".join(out)
 
 
 def split_test(residuals: Mapping[str, np.ndarray], columns: Sequence[Mapping[str, np.ndarray]],
@@ -65,9 +103,43 @@ def split_test(residuals: Mapping[str, np.ndarray], columns: Sequence[Mapping[st
     learnt on the richer model's residual, as every decision's is (``noise``)."""
     n = len(np.asarray(residuals[probes[0]]))
     piece = np.minimum(np.arange(n) * segments // n, segments - 1)
-    whole = list(columns)
     split = [{p: np.where(piece == s, c[p], 0.0) for p in probes}
              for c in columns for s in range(1, segments)]
+    return _copies_test(residuals, columns, split, weights, probes)
+
+
+def band_test(residuals: Mapping[str, np.ndarray], columns: Sequence[Mapping[str, np.ndarray]],
+              weights: Mapping[str, float], probes: Sequence[str], bands: int = BANDS
+              ) -> tuple[float, float]:
+    """(ΔBIC, gain [noise units]) of giving each sensitivity its own copy in each of
+    ``bands`` frequency bands, as ``split_test`` does with pieces of the record. The bands
+    are of the cosine transform (no leakage from a record's unequal ends), cut where the
+    columns' energy over the probes' noise reaches each equal share; a bin holding more than
+    a share leaves fewer, wider bands."""
+    n = len(np.asarray(residuals[probes[0]]))
+    spectra = [{p: fft.dct(np.asarray(c[p], float), norm="ortho") for p in probes}
+               for c in columns]
+    energy = sum(np.square(s[p] / weights[p]) for s in spectra for p in probes)
+    share = np.cumsum(energy) / max(float(np.sum(energy)), 1e-300)
+    band = np.minimum((share * bands).astype(int), bands - 1)
+    # a band is the bins whose cumulative share falls in it: the first bin past a cut opens
+    # the next band, so that each holds its share and none is empty
+    band = np.concatenate([[0], band[:-1]]) if n > 1 else band
+    used = [b for b in range(1, bands) if np.any(band == b)]
+    split = [{p: fft.idct(np.where(band == b, s[p], 0.0), norm="ortho") for p in probes}
+             for s in spectra for b in used]
+    return _copies_test(residuals, columns, split, weights, probes)
+
+
+def _copies_test(residuals: Mapping[str, np.ndarray],
+                 columns: Sequence[Mapping[str, np.ndarray]],
+                 split: Sequence[Mapping[str, np.ndarray]], weights: Mapping[str, float],
+                 probes: Sequence[str]) -> tuple[float, float]:
+    """(ΔBIC, gain) of the regressors ``split`` added to ``columns`` (see ``split_test``)."""
+    n = len(np.asarray(residuals[probes[0]]))
+    whole = list(columns)
+    if not split:
+        return 0.0, 0.0
     raw = _stack(residuals, probes, weights)
     x = np.column_stack([_stack(c, probes, weights) for c in whole + split])
     beta, *_ = np.linalg.lstsq(x, raw, rcond=None)
@@ -136,5 +208,5 @@ def stability(setup: Setup, state: ModelState, candidate, own: float) -> Stabili
     columns = sensitivities(setup, state, candidate)
     if columns is None:
         return None
-    dbic, gain = split_test(state.fit.residuals, columns, setup.weights, setup.probes)
-    return Stability(dbic, gain, own)
+    args = (state.fit.residuals, columns, setup.weights, setup.probes)
+    return Stability(*split_test(*args), own, *band_test(*args))
