@@ -1,14 +1,15 @@
 """Run circuitsim's diagnosis on the benchmark records and score it against truth.json.
 
-    python benchmarks/diagnosis/run.py --split tune          # or heldout, fresh..fresh6, all
+    python benchmarks/diagnosis/run.py --split tune          # or heldout, fresh..fresh7, all
     python benchmarks/diagnosis/run.py --only c01,n02 --timeout 600
     python benchmarks/diagnosis/run.py --split all --score-only   # re-print from results/
 
 Each record is diagnosed in a fresh child process (``--child ID``) with a wall-clock timeout;
 its result goes to results/<id>.json (git-ignored) as soon as it is done, so an interrupted
 run resumes where it stopped (``--rerun`` recomputes). A missing record CSV is generated
-first (make_records.py --only ID; make_records_d.py for motor D, make_records_e.py for E, make_records_f.py for F). ``--circuitsim DIR`` puts
-a circuitsim checkout first on the child's path (default: whatever the interpreter imports).
+first (make_records.py --only ID; make_records_d.py for motor D, make_records_e.py for E, make_records_f.py for F,
+make_records_g.py for G). ``--circuitsim DIR`` puts a circuitsim checkout first on the
+child's path (default: whatever the interpreter imports).
 
 The API is looked up as ``circuitsim.diagnose`` (a callable exported at the top level), then
 ``circuitsim.loop.diagnose.diagnose``, then the old ``circuitsim.diagnose.diagnose``; the
@@ -391,7 +392,8 @@ def run_one(entry: dict, timeout: float, circuitsim_dir: str | None, niceness: i
     csv = ROOT / entry["csv"]
     if not csv.exists():
         maker = {"D": "make_records_d.py", "E": "make_records_e.py",
-                 "F": "make_records_f.py"}.get(entry["motor"], "make_records.py")
+                 "F": "make_records_f.py", "G": "make_records_g.py"}.get(entry["motor"],
+                                                                         "make_records.py")
         subprocess.run([sys.executable, str(HERE / maker), "--only", entry["id"]],
                        check=True, stdout=subprocess.DEVNULL)
     env = dict(os.environ)
@@ -422,7 +424,7 @@ def run_one(entry: dict, timeout: float, circuitsim_dir: str | None, niceness: i
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--split", choices=("tune", "heldout", "fresh", "fresh2", "fresh3",
-                                        "fresh4", "fresh5", "fresh6", "all"),
+                                        "fresh4", "fresh5", "fresh6", "fresh7", "all"),
                     default="tune")
     ap.add_argument("--only", default="", help="record ids, comma-separated")
     ap.add_argument("--timeout", type=float, default=1200.0, help="per record [s]")
@@ -449,7 +451,7 @@ def main() -> int:
             run_one(e, args.timeout, args.circuitsim, args.nice)
     totals = [0, 0]
     for split in ("tune", "heldout", "fresh", "fresh2", "fresh3", "fresh4", "fresh5",
-                  "fresh6"):
+                  "fresh6", "fresh7"):
         part = [e for e in sel if e["split"] == split]
         if part:
             r, n = report(part, split)
