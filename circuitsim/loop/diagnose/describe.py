@@ -21,7 +21,7 @@ from circuitsim.loop.diagnose.noise import (
     transient_excess,
     whiteners_of,
 )
-from circuitsim.loop.diagnose.residual import ORDER_TOL, ljung_box
+from circuitsim.loop.diagnose.residual import ORDER_TOL, ljung_box, on_travelled_angle
 
 WINDOWS = 10  # time windows for "when in the record"
 MIN_SHARE = 0.02  # structure below this share of a probe's whitened residual is not reported
@@ -133,15 +133,9 @@ class _Locking:
         """Significant lines of the residual resampled on shaft ``n``'s travelled angle
         [orders: cycles per turn] (None when it travels under two turns)."""
         if n not in self._tracked:
-            moving = w > 0.1 * max(float(np.max(w)), 1e-300)
-            travel = np.concatenate([[0.0], np.cumsum(0.5 * (w[1:] + w[:-1]) *
-                                                       np.diff(self.t))])[moving]
-            keep = np.concatenate([[True], np.diff(travel) > 0])
-            travel, r = travel[keep], self.r[moving][keep]
-            out = None
-            if travel.size > 16 and travel[-1] - travel[0] >= 4 * math.pi:
-                grid = np.linspace(travel[0], travel[-1], travel.size)
-                x = np.interp(grid, travel, r)
+            tracked, out = on_travelled_angle(self.t, w, self.r), None
+            if tracked is not None:
+                grid, x = tracked
                 x = x - np.polyval(np.polyfit(grid, x, 1), grid)
                 out = significant_lines(fit_whitener(x).apply(x),
                                         (grid[1] - grid[0]) / (2 * math.pi))

@@ -139,25 +139,35 @@ def _time_peaks(t: np.ndarray, r: np.ndarray, shafts: Mapping[str, Any], sim
     return peaks
 
 
+def on_travelled_angle(t: np.ndarray, w: np.ndarray, r: np.ndarray
+                       ) -> tuple[np.ndarray, np.ndarray] | None:
+    """``r`` resampled on a uniform grid of the angle a shaft of speed ``w`` [rad/s]
+    *travels* [rad] (order tracking): a harmonic of the angle is a line at its order even
+    while the speed changes, and a reversal keeps the order where the signed angle would fold
+    back on itself. Only the samples where the shaft turns at a tenth of its top speed or more
+    count (a start from rest, a pause). None when it travels under two turns."""
+    w = np.abs(np.asarray(w, float))
+    moving = w > 0.1 * max(float(np.max(w)), 1e-300) if w.size else w > 0
+    travel = np.concatenate([[0.0], np.cumsum(0.5 * (w[1:] + w[:-1]) * np.diff(t))])[moving]
+    keep = np.concatenate([[True], np.diff(travel) > 0])
+    travel, x = travel[keep], np.asarray(r, float)[moving][keep]
+    if travel.size <= 16 or travel[-1] - travel[0] < 4 * math.pi:
+        return None
+    grid = np.linspace(travel[0], travel[-1], travel.size)
+    return grid, np.interp(grid, travel, x)
+
+
 def _order_peaks(sim, speeds, t, r, known) -> list[dict[str, Any]]:
-    """Peaks of the residual's spectrum in the shaft angle (order tracking): resampled on a
-    uniform angle grid, a harmonic of the angle is a line at its order even while the speed
-    changes, where the time spectrum smears it."""
+    """Peaks of the residual's spectrum in the shaft angle (order tracking,
+    ``on_travelled_angle``), where the time spectrum smears a harmonic of a changing speed."""
     out = []
     for n in speeds:
-        phi_all = np.asarray(sim[f"{n}.phi"])
-        w = np.asarray(sim[f"{n}.w"])
-        # from the moment the shaft turns steadily forward (a start from rest is skipped)
-        moving = w > 0.1 * max(float(np.max(w)), 1e-300)
-        if not moving.any():
+        w = np.asarray(sim[f"{n}.w"], float)
+        tracked = on_travelled_angle(t, w, r)
+        if tracked is None:
             continue
-        first = int(np.argmax(moving))
-        phi, rr = phi_all[first:], r[first:]
-        if phi[-1] - phi[0] < 4 * math.pi or not np.all(np.diff(phi) > 0):
-            continue
-        m = phi.size
-        grid = np.linspace(phi[0], phi[-1], m)
-        x = np.interp(grid, phi, rr)
+        grid, x = tracked
+        m = grid.size
         x = x - np.polyval(np.polyfit(grid, x, 1), grid)
         win = 0.5 - 0.5 * np.cos(2 * math.pi * np.arange(m) / m)
         amp = np.abs(np.fft.rfft(x * win)) * 2 / win.sum()
@@ -170,7 +180,9 @@ def _order_peaks(sim, speeds, t, r, known) -> list[dict[str, Any]]:
                 continue
             if any(p["orders"].get(n) == kk for p in known + out):
                 continue
-            out.append({"frequency": float(kk * speeds[n] / (2 * math.pi)),
+            # a reversing shaft's mean speed says little: the line's frequency at its mean
+            # turning rate
+            out.append({"frequency": float(kk * np.mean(np.abs(w)) / (2 * math.pi)),
                         "amplitude": float(amp[k]), "orders": {n: kk}, "domain": "angle"})
             if len(out) == 4:
                 break
