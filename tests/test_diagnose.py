@@ -551,3 +551,22 @@ def test_a_line_is_named_an_order_when_locked_to_a_shaft_that_changes_speed():
     assert fixed.order_of(120.0, ["rotor"]) == "time"
     slow = _Locking(t, noise + 0.2 * w / np.max(w), state)
     assert slow.order_of(2.0, ["rotor"]) == ""  # only orders under 1 reach 2 Hz: no claim
+
+
+def test_orders_are_proposed_from_a_shaft_that_reverses():
+    """residual._order_peaks, which proposes the harmonic candidates (cogging, unbalance, EMF
+    harmonics): a shaft runs up, reverses and runs back. Its residual, resampled on the angle
+    the shaft travels, holds order 3 -- a ripple sin(3 phi) -- and only that; a residual of
+    noise alone proposes no order."""
+    from circuitsim.loop.diagnose.residual import _order_peaks
+
+    t = np.arange(20000) / 20000.0
+    rev = np.interp(t, [0.0, 0.2, 0.5, 0.7, 1.0], [0.0, 30.0, 30.0, -20.0, -20.0])
+    w = 2 * np.pi * rev
+    phi = np.concatenate([[0.0], np.cumsum(0.5 * (w[1:] + w[:-1]) * np.diff(t))])
+    sim = {"rotor.phi": phi, "rotor.w": w}
+    noise = np.random.default_rng(7).normal(0.0, 0.05, t.size)
+    peaks = _order_peaks(sim, {"rotor": float(np.mean(w))}, t,
+                         noise + 0.02 * np.sin(3 * phi + 0.5), [])
+    assert [p["orders"] for p in peaks] == [{"rotor": 3}]
+    assert _order_peaks(sim, {"rotor": float(np.mean(w))}, t, noise, []) == []

@@ -159,31 +159,37 @@ def on_travelled_angle(t: np.ndarray, w: np.ndarray, r: np.ndarray
 
 def _order_peaks(sim, speeds, t, r, known) -> list[dict[str, Any]]:
     """Peaks of the residual's spectrum in the shaft angle (order tracking,
-    ``on_travelled_angle``), where the time spectrum smears a harmonic of a changing speed."""
-    out = []
+    ``on_travelled_angle``), where the time spectrum smears a harmonic of a changing speed.
+    A line counts when it stands out of the prewhitened order spectrum
+    (``noise.significant_lines``): resampling on the angle colours even white noise (a fast
+    stretch is interpolated, a slow one decimated), and against a flat background the
+    noise's own bumps would pass for orders."""
+    from circuitsim.loop.diagnose.noise import fit_whitener, significant_lines
+
+    out: list[dict[str, Any]] = []
     for n in speeds:
         w = np.asarray(sim[f"{n}.w"], float)
         tracked = on_travelled_angle(t, w, r)
         if tracked is None:
             continue
         grid, x = tracked
-        m = grid.size
         x = x - np.polyval(np.polyfit(grid, x, 1), grid)
-        win = 0.5 - 0.5 * np.cos(2 * math.pi * np.arange(m) / m)
-        amp = np.abs(np.fft.rfft(x * win)) * 2 / win.sum()
-        orders = np.fft.rfftfreq(m, (grid[1] - grid[0]) / (2 * math.pi))
-        floor = float(np.median(amp[1:])) if amp.size > 2 else 0.0
-        level = math.sqrt(math.log(max(amp.size, 2) / 0.01) / math.log(2.0)) * floor
-        for k in np.argsort(amp)[::-1][:200]:
-            kk = round(orders[k])
-            if kk < 1 or abs(orders[k] - kk) > ORDER_TOL * kk or amp[k] < level:
+        step = (grid[1] - grid[0]) / (2 * math.pi)  # [turns]
+        lines = significant_lines(fit_whitener(x).apply(x), step)
+        win = 0.5 - 0.5 * np.cos(2 * math.pi * np.arange(x.size) / x.size)
+        amp = np.abs(np.fft.rfft(x * win)) * 2 / win.sum()  # for the report [probe unit]
+        for k in np.argsort(lines.excess)[::-1]:
+            order = float(lines.freqs[k])
+            kk = round(order)
+            if kk < 1 or abs(order - kk) > ORDER_TOL * kk:
                 continue
             if any(p["orders"].get(n) == kk for p in known + out):
                 continue
             # a reversing shaft's mean speed says little: the line's frequency at its mean
             # turning rate
             out.append({"frequency": float(kk * np.mean(np.abs(w)) / (2 * math.pi)),
-                        "amplitude": float(amp[k]), "orders": {n: kk}, "domain": "angle"})
+                        "amplitude": float(amp[min(round(kk * x.size * step), amp.size - 1)]),
+                        "orders": {n: kk}, "domain": "angle"})
             if len(out) == 4:
                 break
     return out
