@@ -409,23 +409,30 @@ def _split_case(delta, seed, phi=0.0):
     return dbic, gain, shifted
 
 
+def _closed_form_and_null(case, delta, seed):
+    """``case(delta, seed, phi)`` -> (ΔBIC, gain, shifted): the gain is |shifted|^2 within 5
+    sigma of its cross term with the noise and passes the BIC margin; with delta 0, 20 seeds
+    of white and of AR(1) noise never pass it and gain chi^2_3 on average (3)."""
+    from circuitsim.loop.diagnose.decide import BIC_MARGIN
+
+    dbic, gain, shifted = case(delta, seed=seed)
+    signal = float(shifted @ shifted)
+    assert signal > 3000
+    assert gain == pytest.approx(signal, abs=5 * 2 * np.sqrt(signal))
+    assert dbic < -BIC_MARGIN
+    for phi in (0.0, 0.8):
+        null = [case(0.0, seed=s, phi=phi)[:2] for s in range(20)]
+        assert all(d > 0 for d, _ in null), null
+        assert np.mean([g for _, g in null]) == pytest.approx(3.0, abs=1.5)
+
+
 def test_parameters_that_change_within_the_record_are_seen_and_constant_ones_are_not():
     """The split test (stability.split_test): a parameter that takes another value in the
     second half of the record gains what that change puts into the residual, |delta g|^2 in
     units of the noise (within 5 sigma of its cross term with the noise, 2 |delta g|); one
     that stays constant gains chi^2 with 3 degrees of freedom (its mean 3) and never passes
     the BIC margin, on white and on AR(1) noise."""
-    from circuitsim.loop.diagnose.decide import BIC_MARGIN
-
-    dbic, gain, shifted = _split_case(1.5, seed=3)
-    signal = float(shifted @ shifted)
-    assert signal > 3000
-    assert gain == pytest.approx(signal, abs=5 * 2 * np.sqrt(signal))
-    assert dbic < -BIC_MARGIN
-    for phi in (0.0, 0.8):
-        null = [_split_case(0.0, seed=s, phi=phi)[:2] for s in range(20)]
-        assert all(d > 0 for d, _ in null), null
-        assert np.mean([g for _, g in null]) == pytest.approx(3.0, abs=1.5)
+    _closed_form_and_null(_split_case, 1.5, seed=3)
 
 
 def _band_case(delta, seed, phi=0.0):
@@ -466,17 +473,7 @@ def test_parameters_that_differ_between_frequency_bands_are_seen_and_constant_on
     residual, |delta g_high|^2 in noise units (within 5 sigma of its cross term with the
     noise); one with the same value at every frequency gains chi^2 with 3 degrees of freedom
     (mean 3) and never passes the BIC margin, on white and on AR(1) noise."""
-    from circuitsim.loop.diagnose.decide import BIC_MARGIN
-
-    dbic, gain, shifted = _band_case(40.0, seed=5)
-    signal = float(shifted @ shifted)
-    assert signal > 3000
-    assert gain == pytest.approx(signal, abs=5 * 2 * np.sqrt(signal))
-    assert dbic < -BIC_MARGIN
-    for phi in (0.0, 0.8):
-        null = [_band_case(0.0, seed=s, phi=phi)[:2] for s in range(20)]
-        assert all(d > 0 for d, _ in null), null
-        assert np.mean([g for _, g in null]) == pytest.approx(3.0, abs=1.5)
+    _closed_form_and_null(_band_case, 40.0, seed=5)
 
 
 def test_an_effect_whose_parameters_are_not_constants_is_a_stand_in(monkeypatch):
