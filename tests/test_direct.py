@@ -235,3 +235,24 @@ def test_kernel_powers_call_c_pow():
     line = "    a[3] = (p306)**(-3)*x**3 + -y**2.5 + (c1**c2)"
     assert _libm_powers(line) == ("    a[3] = libm_pow(p306, -3.0) * libm_pow(x, 3.0) + "
                                   "-libm_pow(y, 2.5) + libm_pow(c1, c2)")
+
+
+def test_kernel_powers_of_a_deep_sum():
+    """A kernel line that sums a thousand powers (a large network's equation) is rewritten
+    -- the walk of its operators once recursed past Python's limit at about 400 terms --
+    and gives Python's own value, every power through pow."""
+    import sys
+
+    from circuitsim.compiler.codegen import _libm_powers
+
+    n = 1000
+    line = "    r0 = " + " + ".join(f"y{k}**2*p{k}" for k in range(n))
+    limit = sys.getrecursionlimit()
+    out = _libm_powers(line)
+    assert sys.getrecursionlimit() == limit
+    assert out.count("libm_pow(") == n and "**" not in out
+    values = {**{f"y{k}": 1.0 + k / n for k in range(n)}, **{f"p{k}": 0.5 for k in range(n)}}
+    rewritten, plain = {"libm_pow": pow, **values}, dict(values)
+    exec(compile(out.strip(), "kernel", "exec"), rewritten)  # noqa: S102 - generated here
+    exec(compile(line.strip(), "kernel", "exec"), plain)  # noqa: S102 - generated here
+    assert rewritten["r0"] == plain["r0"]

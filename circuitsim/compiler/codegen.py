@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import ast
 import re
+import sys
 from typing import Any
 
 from circuitsim.solve.kernel_lib import KERNEL_LIB
@@ -498,8 +499,15 @@ def _libm_powers(line: str) -> str:
     if "**" not in line:
         return line
     indent = line[:len(line) - len(line.lstrip())]
-    tree = ast.fix_missing_locations(_PowCalls().visit(ast.parse(line.strip())))
-    return indent + ast.unparse(tree)
+    limit = sys.getrecursionlimit()
+    # the walk recurses once per operator of a chain: a sum of thousands of terms (a large
+    # network's equation, a model with many harmonic terms) is that deep
+    sys.setrecursionlimit(max(limit, 40 * line.count(" ") + 1000))
+    try:
+        tree = ast.fix_missing_locations(_PowCalls().visit(ast.parse(line.strip())))
+        return indent + ast.unparse(tree)
+    finally:
+        sys.setrecursionlimit(limit)
 
 
 def _large_kernels(rest: tuple[list[int], list], lin_meta: dict, jac_exprs: list,

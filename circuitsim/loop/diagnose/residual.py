@@ -9,6 +9,9 @@ from typing import Any
 import numpy as np
 
 ORDER_TOL = 0.03  # a spectral peak is order k when |f/f_shaft - k| < ORDER_TOL k
+#: Share of the order-tracked residual's structure a line must hold to be proposed as an
+#: order of a shaft that changes speed (as the description asks to name one: describe)
+ORDER_SHARE = 0.25
 
 
 def noise_sigma(r: np.ndarray, step: float = 0.0) -> float:
@@ -181,7 +184,10 @@ def _order_peaks(sim, speeds, t, r, known) -> list[dict[str, Any]]:
         for k in np.argsort(lines.excess)[::-1]:
             order = float(lines.freqs[k])
             kk = round(order)
-            if kk < 1 or abs(order - kk) > ORDER_TOL * kk:
+            # a line fixed in time (a filter's ringing) smears over many orders on a shaft
+            # that changes speed, each bin near some integer: an order holds a fair share
+            if kk < 1 or abs(order - kk) > ORDER_TOL * kk or \
+                    lines.excess[k] < ORDER_SHARE * lines.structured:
                 continue
             if any(p["orders"].get(n) == kk for p in known + out):
                 continue
