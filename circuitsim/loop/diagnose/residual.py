@@ -9,9 +9,7 @@ from typing import Any
 import numpy as np
 
 ORDER_TOL = 0.03  # a spectral peak is order k when |f/f_shaft - k| < ORDER_TOL k
-#: Share of the order-tracked residual's structure a line must hold to be proposed as an
-#: order of a shaft that changes speed (as the description asks to name one: describe)
-ORDER_SHARE = 0.25
+LOCAL_BINS = 20  # bins on either side whose median is an order line's background
 
 
 def noise_sigma(r: np.ndarray, step: float = 0.0) -> float:
@@ -160,42 +158,63 @@ def on_travelled_angle(t: np.ndarray, w: np.ndarray, r: np.ndarray
     return grid, np.interp(grid, travel, x)
 
 
+def _forward_angle(t: np.ndarray, phi: np.ndarray, w: np.ndarray, r: np.ndarray
+                   ) -> tuple[np.ndarray, np.ndarray] | None:
+    """``r`` on a uniform grid of the shaft's angle ``phi`` [rad] from the moment it turns
+    steadily forward (a start from rest is skipped); None when it travels under two turns or
+    its angle ever falls back (it reverses)."""
+    moving = w > 0.1 * max(float(np.max(w)), 1e-300)
+    if not moving.any():
+        return None
+    first = int(np.argmax(moving))
+    phi, rr = phi[first:], r[first:]
+    if phi[-1] - phi[0] < 4 * math.pi or not np.all(np.diff(phi) > 0):
+        return None
+    grid = np.linspace(phi[0], phi[-1], phi.size)
+    return grid, np.interp(grid, phi, rr)
+
+
 def _order_peaks(sim, speeds, t, r, known) -> list[dict[str, Any]]:
-    """Peaks of the residual's spectrum in the shaft angle (order tracking,
-    ``on_travelled_angle``), where the time spectrum smears a harmonic of a changing speed.
-    A line counts when it stands out of the prewhitened order spectrum
-    (``noise.significant_lines``): resampling on the angle colours even white noise (a fast
-    stretch is interpolated, a slow one decimated), and against a flat background the
-    noise's own bumps would pass for orders."""
-    from circuitsim.loop.diagnose.noise import fit_whitener, significant_lines
+    """Peaks of the residual's spectrum in the shaft angle (order tracking), where the time
+    spectrum smears a harmonic of a changing speed. A line counts when its amplitude exceeds
+    what noise reaches in any bin with probability 1 % (Rayleigh amplitudes, Bonferroni over
+    the bins) against the median amplitude. A shaft that turns forward only is read on its
+    angle from the moment it turns (``_forward_angle``), against the whole spectrum's median.
+    One that reverses is read on the angle it travels (``on_travelled_angle``), against the
+    *local* median (``LOCAL_BINS`` on either side): a line fixed in time (a filter's ringing)
+    smears over dozens of orders of its changing speed, and against one flat background each
+    passed for an order (fresh6's k12: cogging of orders 13-180 proposed, round after
+    round)."""
+    from scipy.ndimage import median_filter
 
     out: list[dict[str, Any]] = []
     for n in speeds:
         w = np.asarray(sim[f"{n}.w"], float)
-        tracked = on_travelled_angle(t, w, r)
+        tracked, local = _forward_angle(t, np.asarray(sim[f"{n}.phi"], float), w, r), False
+        if tracked is None:  # it reverses: the travelled angle, against a local background
+            tracked, local = on_travelled_angle(t, w, r), True
         if tracked is None:
             continue
         grid, x = tracked
+        m = grid.size
         x = x - np.polyval(np.polyfit(grid, x, 1), grid)
-        step = (grid[1] - grid[0]) / (2 * math.pi)  # [turns]
-        lines = significant_lines(fit_whitener(x).apply(x), step)
-        win = 0.5 - 0.5 * np.cos(2 * math.pi * np.arange(x.size) / x.size)
-        amp = np.abs(np.fft.rfft(x * win)) * 2 / win.sum()  # for the report [probe unit]
-        for k in np.argsort(lines.excess)[::-1]:
-            order = float(lines.freqs[k])
-            kk = round(order)
-            # a line fixed in time (a filter's ringing) smears over many orders on a shaft
-            # that changes speed, each bin near some integer: an order holds a fair share
-            if kk < 1 or abs(order - kk) > ORDER_TOL * kk or \
-                    lines.excess[k] < ORDER_SHARE * lines.structured:
+        win = 0.5 - 0.5 * np.cos(2 * math.pi * np.arange(m) / m)
+        amp = np.abs(np.fft.rfft(x * win)) * 2 / win.sum()
+        orders = np.fft.rfftfreq(m, (grid[1] - grid[0]) / (2 * math.pi))
+        floor = (median_filter(amp, size=2 * LOCAL_BINS + 1, mode="nearest") if local else
+                 np.full(amp.size, float(np.median(amp[1:])) if amp.size > 2 else 0.0))
+        level = math.sqrt(math.log(max(amp.size, 2) / 0.01) / math.log(2.0)) * floor
+        for k in np.argsort(amp)[::-1][:200]:
+            kk = round(orders[k])
+            if kk < 1 or abs(orders[k] - kk) > ORDER_TOL * kk or amp[k] < level[k]:
                 continue
             if any(p["orders"].get(n) == kk for p in known + out):
                 continue
             # a reversing shaft's mean speed says little: the line's frequency at its mean
             # turning rate
-            out.append({"frequency": float(kk * np.mean(np.abs(w)) / (2 * math.pi)),
-                        "amplitude": float(amp[min(round(kk * x.size * step), amp.size - 1)]),
-                        "orders": {n: kk}, "domain": "angle"})
+            rate = float(np.mean(np.abs(w))) if local else speeds[n]
+            out.append({"frequency": float(kk * rate / (2 * math.pi)),
+                        "amplitude": float(amp[k]), "orders": {n: kk}, "domain": "angle"})
             if len(out) == 4:
                 break
     return out
