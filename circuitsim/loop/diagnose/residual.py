@@ -9,7 +9,9 @@ from typing import Any
 import numpy as np
 
 ORDER_TOL = 0.03  # a spectral peak is order k when |f/f_shaft - k| < ORDER_TOL k
-LOCAL_BINS = 20  # bins on either side whose median is an order line's background
+#: Share of the structure of the residual on a reversing shaft's travelled angle a line must
+#: hold to be proposed as an order (as the description asks to name one: describe)
+ORDER_SHARE = 0.25
 
 
 def noise_sigma(r: np.ndarray, step: float = 0.0) -> float:
@@ -176,48 +178,75 @@ def _forward_angle(t: np.ndarray, phi: np.ndarray, w: np.ndarray, r: np.ndarray
 
 def _order_peaks(sim, speeds, t, r, known) -> list[dict[str, Any]]:
     """Peaks of the residual's spectrum in the shaft angle (order tracking), where the time
-    spectrum smears a harmonic of a changing speed. A line counts when its amplitude exceeds
-    what noise reaches in any bin with probability 1 % (Rayleigh amplitudes, Bonferroni over
-    the bins) against the median amplitude. A shaft that turns forward only is read on its
-    angle from the moment it turns (``_forward_angle``), against the whole spectrum's median.
-    One that reverses is read on the angle it travels (``on_travelled_angle``), against the
-    *local* median (``LOCAL_BINS`` on either side): a line fixed in time (a filter's ringing)
-    smears over dozens of orders of its changing speed, and against one flat background each
-    passed for an order (fresh6's k12: cogging of orders 13-180 proposed, round after
-    round)."""
-    from scipy.ndimage import median_filter
-
+    spectrum smears a harmonic of a changing speed. A shaft that turns forward only is read
+    on its angle from the moment it turns (``_forward_angle``): a line counts when its
+    amplitude exceeds what noise reaches in any bin with probability 1 % (Rayleigh
+    amplitudes, Bonferroni over the bins) against the median amplitude. One that reverses is
+    read on the angle it travels (``on_travelled_angle``, as the description reads it): a
+    line counts when it stands out of the prewhitened spectrum (``noise.significant_lines``)
+    and holds ``ORDER_SHARE`` of its structure. Resampling on the angle colours even white
+    noise, and a line fixed in time (a filter's ringing) smears over dozens of orders of a
+    changing speed: against one flat background each passed for an order (fresh6's k12:
+    cogging of orders 13-180 proposed, round after round)."""
     out: list[dict[str, Any]] = []
     for n in speeds:
         w = np.asarray(sim[f"{n}.w"], float)
-        tracked, local = _forward_angle(t, np.asarray(sim[f"{n}.phi"], float), w, r), False
-        if tracked is None:  # it reverses: the travelled angle, against a local background
-            tracked, local = on_travelled_angle(t, w, r), True
-        if tracked is None:
-            continue
-        grid, x = tracked
-        m = grid.size
-        x = x - np.polyval(np.polyfit(grid, x, 1), grid)
-        win = 0.5 - 0.5 * np.cos(2 * math.pi * np.arange(m) / m)
-        amp = np.abs(np.fft.rfft(x * win)) * 2 / win.sum()
-        orders = np.fft.rfftfreq(m, (grid[1] - grid[0]) / (2 * math.pi))
-        floor = (median_filter(amp, size=2 * LOCAL_BINS + 1, mode="nearest") if local else
-                 np.full(amp.size, float(np.median(amp[1:])) if amp.size > 2 else 0.0))
-        level = math.sqrt(math.log(max(amp.size, 2) / 0.01) / math.log(2.0)) * floor
-        for k in np.argsort(amp)[::-1][:200]:
-            kk = round(orders[k])
-            if kk < 1 or abs(orders[k] - kk) > ORDER_TOL * kk or amp[k] < level[k]:
+        forward = _forward_angle(t, np.asarray(sim[f"{n}.phi"], float), w, r)
+        lines = forward and _flat_lines(*forward)
+        if forward is None:  # it reverses
+            lines = _tracked_lines(t, w, r)
+        for order, amp in lines or []:
+            kk = round(order)
+            if kk < 1 or abs(order - kk) > ORDER_TOL * kk:
                 continue
             if any(p["orders"].get(n) == kk for p in known + out):
                 continue
-            # a reversing shaft's mean speed says little: the line's frequency at its mean
-            # turning rate
-            rate = float(np.mean(np.abs(w))) if local else speeds[n]
-            out.append({"frequency": float(kk * rate / (2 * math.pi)),
-                        "amplitude": float(amp[k]), "orders": {n: kk}, "domain": "angle"})
+            # a reversing shaft's mean speed says little: its mean turning rate
+            rate = speeds[n] if forward else float(np.mean(np.abs(w)))
+            out.append({"frequency": float(kk * rate / (2 * math.pi)), "amplitude": amp,
+                        "orders": {n: kk}, "domain": "angle"})
             if len(out) == 4:
                 break
     return out
+
+
+def _hann_amplitudes(grid: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(orders [cycles per turn], amplitude spectrum [unit of x]) of ``x`` on the angle
+    ``grid`` [rad], detrended and Hann-windowed."""
+    m = grid.size
+    x = x - np.polyval(np.polyfit(grid, x, 1), grid)
+    win = 0.5 - 0.5 * np.cos(2 * math.pi * np.arange(m) / m)
+    amp = np.abs(np.fft.rfft(x * win)) * 2 / win.sum()
+    return np.fft.rfftfreq(m, (grid[1] - grid[0]) / (2 * math.pi)), amp
+
+
+def _flat_lines(grid: np.ndarray, x: np.ndarray) -> list[tuple[float, float]]:
+    """(order, amplitude) of the bins above the Rayleigh level of the median amplitude,
+    largest first (at most 200 looked at)."""
+    orders, amp = _hann_amplitudes(grid, x)
+    floor = float(np.median(amp[1:])) if amp.size > 2 else 0.0
+    level = math.sqrt(math.log(max(amp.size, 2) / 0.01) / math.log(2.0)) * floor
+    return [(float(orders[k]), float(amp[k])) for k in np.argsort(amp)[::-1][:200]
+            if amp[k] >= level]
+
+
+def _tracked_lines(t: np.ndarray, w: np.ndarray, r: np.ndarray
+                   ) -> list[tuple[float, float]] | None:
+    """(order, amplitude) of the significant lines of the residual on the travelled angle
+    that hold ``ORDER_SHARE`` of its structure, largest first."""
+    from circuitsim.loop.diagnose.noise import fit_whitener, significant_lines
+
+    tracked = on_travelled_angle(t, w, r)
+    if tracked is None:
+        return None
+    grid, x = tracked
+    x = x - np.polyval(np.polyfit(grid, x, 1), grid)
+    step = (grid[1] - grid[0]) / (2 * math.pi)  # [turns]
+    lines = significant_lines(fit_whitener(x).apply(x), step)
+    orders, amp = _hann_amplitudes(grid, x)
+    return [(float(lines.freqs[k]), float(np.interp(lines.freqs[k], orders, amp)))
+            for k in np.argsort(lines.excess)[::-1]
+            if lines.excess[k] >= ORDER_SHARE * lines.structured]
 
 
 def _orders(analysis: Mapping[str, Any]) -> dict[str, list[int]]:
