@@ -88,10 +88,23 @@ def diagnosis(segment):
     return diagnose(cs.load(EMPS), segment, ["M", "Fv"], probes=["motor_force_N"])
 
 
+# On one cycle the force reading alone cannot tell a constant force on the cart from an offset
+# of the reading: the PD loop cancels the force, which then shifts the cart by only
+# F / (g_tau kp kv) = 2.3 um (position is not a probe here). Applied +3.16 N is read -3.16 N.
+OFFSETS = {("force-offset", "cart"): 1.0, ("sensor-offset", "motor_force_N"): -1.0}
+
+
 def test_diagnose_finds_coulomb_friction_then_the_offset(diagnosis):
     found = [(e.effect, e.target) for e in diagnosis.effects]
     assert found[0] == ("coulomb-friction", "cart"), found
-    assert ("force-offset", "cart") in found, found
+    offsets = [e for e in diagnosis.effects if (e.effect, e.target) in OFFSETS]
+    assert len(offsets) == 1, found
+    chosen = offsets[0]
+    # the one not chosen fits as well, and the report must say the data cannot choose
+    other = next(f"{e}:{t}" for e, t in OFFSETS if (e, t) != (chosen.effect, chosen.target))
+    assert any(other in note for note in diagnosis.indistinct), diagnosis.indistinct
+    applied = OFFSETS[chosen.effect, chosen.target] * next(iter(chosen.parameters.values()))
+    assert applied == pytest.approx(PUBLISHED["offset"], rel=0.10), chosen
     fc = next(iter(diagnosis.effects[0].parameters.values()))
     assert fc == pytest.approx(PUBLISHED["Fc"], rel=0.05)
     params = diagnosis.fit_after.params
@@ -113,24 +126,34 @@ def test_diagnose_finds_coulomb_friction_then_the_offset(diagnosis):
 
 def test_the_diagnosed_model_validates_on_the_pulses_record(diagnosis, tmp_path):
     record = _segment(tmp_path, "emps_validation_pulses_1kHz.csv")
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        model = cs.compile(cs.load(PULSES))
+    # the published structure (Fc, Foff as parameters) gives the declared and published runs;
+    # the diagnosed effects, whichever of the two offsets was chosen, are patched into the same
+    # netlist without its friction and offset
+    published_model = _compile(cs.load(PULSES).raw)
+    bare = cs.load(PULSES).raw.copy()
+    bare.comps = [c for c in bare.comps if str(c[0]["name"]) not in ("CF", "FO")]
+    for name in ("Fc", "Foff"):
+        del bare.params[name]
+    raw = bare
+    for found in diagnosis.effects:
+        raw = next(c for c in effects.candidates(build(bare), probes=["motor_force_N"])
+                   if (c.effect, c.target) == (found.effect, found.target)).apply(raw)
+    diagnosed_model = _compile(raw)
+    declared = {"M": diagnosis.fit_before.params["M"], "Fv": diagnosis.fit_before.params["Fv"],
+                "Fc": 0.0, "Foff": 0.0}
     fitted = diagnosis.fit_after.params
-    fc = next(v for k, v in fitted.items() if k.startswith("coulomb_friction"))
-    off = next(v for k, v in fitted.items() if k.startswith("force_offset"))
-    declared = {"M": diagnosis.fit_before.params["M"], "Fv": diagnosis.fit_before.params["Fv"]}
-    after = {"M": fitted["M"], "Fv": fitted["Fv"], "Fc": fc, "Foff": off}
+    found = ["M", "Fv", *(k for e in diagnosis.effects for k in e.parameters)]
 
-    def nrmse(params):
+    def nrmse(model, params):
         sim = model.simulate(stop=float(record.t[-1]), params=params, t_eval=record.t,
                              rtol=1e-8)
         x = record["motor_force_N"]
         return float(np.sqrt(np.mean((x - sim["motor_force_N"]) ** 2)) / np.std(x))
 
-    before, after_ = nrmse(declared), nrmse(after)
-    published = nrmse({"M": PUBLISHED["M"], "Fv": PUBLISHED["Fv"], "Fc": PUBLISHED["Fc"],
-                       "Foff": PUBLISHED["offset"]})
+    before = nrmse(published_model, declared)
+    after_ = nrmse(diagnosed_model, {k: fitted[k] for k in found})
+    published = nrmse(published_model, {"M": PUBLISHED["M"], "Fv": PUBLISHED["Fv"],
+                                         "Fc": PUBLISHED["Fc"], "Foff": PUBLISHED["offset"]})
     # on data the fit never saw, with a disturbance it never saw: the diagnosed model does as
     # well as the published one, and clearly better than the declared model (whose viscous
     # coefficient had doubled to stand in for the missing Coulomb friction)
