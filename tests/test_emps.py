@@ -129,8 +129,9 @@ def test_the_diagnosed_model_validates_on_the_pulses_record(diagnosis, tmp_path)
     # the published structure (Fc, Foff as parameters) gives the declared and published runs;
     # the diagnosed effects, whichever of the two offsets was chosen, are patched into the same
     # netlist without its friction and offset
-    published_model = _compile(cs.load(PULSES).raw)
-    bare = cs.load(PULSES).raw.copy()
+    pulses = cs.load(PULSES).raw
+    published_model = _compile(pulses)
+    bare = pulses.copy()
     bare.comps = [c for c in bare.comps if str(c[0]["name"]) not in ("CF", "FO")]
     for name in ("Fc", "Foff"):
         del bare.params[name]
@@ -142,7 +143,7 @@ def test_the_diagnosed_model_validates_on_the_pulses_record(diagnosis, tmp_path)
     declared = {"M": diagnosis.fit_before.params["M"], "Fv": diagnosis.fit_before.params["Fv"],
                 "Fc": 0.0, "Foff": 0.0}
     fitted = diagnosis.fit_after.params
-    found = ["M", "Fv", *(k for e in diagnosis.effects for k in e.parameters)]
+    names = ["M", "Fv", *(k for e in diagnosis.effects for k in e.parameters)]
 
     def nrmse(model, params):
         sim = model.simulate(stop=float(record.t[-1]), params=params, t_eval=record.t,
@@ -151,7 +152,7 @@ def test_the_diagnosed_model_validates_on_the_pulses_record(diagnosis, tmp_path)
         return float(np.sqrt(np.mean((x - sim["motor_force_N"]) ** 2)) / np.std(x))
 
     before = nrmse(published_model, declared)
-    after_ = nrmse(diagnosed_model, {k: fitted[k] for k in found})
+    after_ = nrmse(diagnosed_model, {k: fitted[k] for k in names})
     published = nrmse(published_model, {"M": PUBLISHED["M"], "Fv": PUBLISHED["Fv"],
                                          "Fc": PUBLISHED["Fc"], "Foff": PUBLISHED["offset"]})
     # on data the fit never saw, with a disturbance it never saw: the diagnosed model does as
