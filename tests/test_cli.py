@@ -37,6 +37,18 @@ def test_set_overrides_with_units(capsys):
     assert out["probes"]["i"]["ripple"]["frequency"] == pytest.approx(f, rel=2e-2)
 
 
+def test_a_window_of_too_few_points_says_so(write_netlist, capsys):
+    # an output step as long as the run leaves the window one point: 'no periodic ripple' was
+    # a claim nobody could have checked
+    path = write_netlist(RLC.read_text(encoding="utf-8").replace(
+        "analysis: {stop: 20 ms, step: 2 us", "analysis: {stop: 1 ms, step: 1 ms"))
+    assert main(["run", str(path), "--no-files", "--json"]) == 0
+    ripple = json.loads(capsys.readouterr().out)["probes"]["v_c"]["ripple"]
+    assert ripple["state"] == "too few points" and ripple["points"] == 1
+    assert main(["run", str(path), "--no-files"]) == 0
+    assert "too few to judge" in capsys.readouterr().out
+
+
 @pytest.mark.parametrize("setting, words", [
     ("C=5ohm", "dimension"),
     ("Nope=1", "unknown parameter 'Nope'"),

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import argparse
 import json
 import sys
 import warnings
@@ -10,12 +11,25 @@ from circuitsim.cli.progress import status_line
 from circuitsim.files import atomic_write, check_output
 from circuitsim.loop.fit import FitError, fit_features, fit_record, format_result
 from circuitsim.loop.record import DataError, FeatureSet
+from circuitsim.netlist.load import analysis_problem
+
+
+def _rtol(text: str) -> float:
+    """An argparse ``type``: the integrator's relative tolerance, refused outside (0, 0.01]."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a number") from None
+    problem = analysis_problem("rtol", value)
+    if problem:
+        raise argparse.ArgumentTypeError(problem)
+    return value
 
 
 def add_cli(sub) -> None:
+    """Register ``circuitsim fit`` on an argparse subparsers action."""
     from circuitsim.cli.main import ALLOW_HELP
 
-    """Register ``circuitsim fit`` on an argparse subparsers action."""
     f = sub.add_parser("fit", help="fit free parameters to a measured record or features",
                        description="Nonlinear least squares of free netlist parameters against "
                        "a CSV record (time + one column per probe, SI or with the unit in brackets: "
@@ -40,7 +54,8 @@ def add_cli(sub) -> None:
     f.add_argument("--inputs", default="", metavar="NAME,...",
                    help="record: other columns that are not probes (measured inputs, ignored "
                         "unless a table source reads them)")
-    f.add_argument("--rtol", type=float, default=1e-8, help="record: integrator rtol")
+    f.add_argument("--rtol", type=_rtol, default=1e-8,
+                   help="record: integrator rtol (at most 0.01)")
     f.add_argument("--full-record", action="store_true",
                    help="record: fit every row, even of a long record sampled far faster than "
                         "its content needs (by default such a record is filtered and reduced "

@@ -129,8 +129,8 @@ def summarize(res, window: float) -> dict:
             entry["ripple"] = {"state": r.state, "frequency": r.frequency,
                                "amplitude": r.amplitude, "p_value": r.p_value}
         except ValueError:  # too few samples in the window to say anything
-            entry["ripple"] = {"state": "none", "frequency": 0.0, "amplitude": 0.0,
-                               "p_value": 1.0}
+            entry["ripple"] = {"state": "too few points", "points": int(m.sum()),
+                               "frequency": 0.0, "amplitude": 0.0, "p_value": 1.0}
         out[name] = entry
     return out
 
@@ -139,6 +139,8 @@ def _ripple_text(e: dict) -> str:
     r, u = e["ripple"], e["unit"]
     if r["state"] == "periodic":
         return f"{r['frequency']:.6g} Hz, {_fmt(r['amplitude'], u)} peak"
+    if r["state"] == "too few points":  # not 'no ripple': nothing could be seen
+        return f"{r['points']} output point(s) in the window: too few to judge (lower the step)"
     return "settling" if r["state"] == "settling" else "no periodic ripple"
 
 

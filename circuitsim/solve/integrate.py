@@ -17,6 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from circuitsim.errors import SolverError
+from circuitsim.netlist.load import analysis_problem
 from circuitsim.solve import events
 from circuitsim.solve.init import check_initial, consistent_initial, initial_state
 from circuitsim.solve.result import SimResult, Status
@@ -80,6 +81,10 @@ def settings(model, stop: float | None = None, step: float | None = None,
     init = init or an.init
     if init not in ("rest", "op"):
         raise SolverError(f"init must be 'rest' or 'op', not {init!r}")
+    for key, value in (("step", step), ("rtol", rtol)):
+        problem = analysis_problem(key, value)
+        if problem:
+            raise SolverError(problem)
     if t_eval is None:
         h = step or an.step or stop / 20_000
         # at least [0, stop]: a step longer than twice the run rounded to one output, t = 0,
