@@ -304,7 +304,8 @@ def _scan_rows(path: str, header: list[str], rows: list[list[str]],
                             f"Write plain numbers in SI units (no unit suffixes, no thousands "
                             f"separators); put units in the netlist", line) from None
             if not math.isfinite(v):
-                raise error(f"row {line}, column '{header[j]}' is {s} (missing or NaN). "
+                what = "missing or NaN" if math.isnan(v) else "infinite: a saturated reading?"
+                raise error(f"row {line}, column '{header[j]}' is {s} ({what}). "
                             f"Remove the row, or interpolate the missing sample", line)
             out[i, j] = v
     return out

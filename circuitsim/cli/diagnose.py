@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import argparse
 import json
 import sys
 import warnings
@@ -16,7 +17,20 @@ def _atomic_text(path: str, text: str) -> None:
     atomic_write(path, text, make_dirs=False)
 
 
+def _count(text: str) -> int:
+    """An argparse ``type``: a whole number of effects, 0 or more (0: fit and describe only)."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a whole number") from None
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"'{text}' must be 0 or more (0: fit the declared "
+                                         f"model and describe its residual)")
+    return value
+
+
 def add_cli(sub) -> None:
+    """Register ``circuitsim diagnose`` on an argparse subparsers action."""
     from circuitsim.cli.main import ALLOW_HELP
 
     d = sub.add_parser("diagnose", help="trace the residual against measured data to a "
@@ -34,7 +48,7 @@ def add_cli(sub) -> None:
     d.add_argument("--time", default="time", help="name of the time column [s]")
     d.add_argument("--inputs", default="", help="other columns of the CSV that are not "
                    "probes (measured inputs, unused signals), comma-separated")
-    d.add_argument("--max-effects", type=int, default=MAX_EFFECTS,
+    d.add_argument("--max-effects", type=_count, default=MAX_EFFECTS,
                    help=f"largest number of effects to add (default {MAX_EFFECTS})")
     d.add_argument("--set", action="append", metavar="NAME=VALUE",
                    help="override a parameter (units checked); for a declared free one, its "

@@ -21,7 +21,13 @@ from circuitsim.loop.diagnose.noise import (
     transient_excess,
     whiteners_of,
 )
-from circuitsim.loop.diagnose.residual import ORDER_TOL, ljung_box, on_travelled_angle
+from circuitsim.loop.diagnose.residual import (
+    ORDER_TOL,
+    RESOLUTION,
+    below_resolution,
+    ljung_box,
+    on_travelled_angle,
+)
 
 WINDOWS = 10  # time windows for "when in the record"
 MIN_SHARE = 0.02  # structure below this share of a probe's whitened residual is not reported
@@ -37,9 +43,12 @@ def remaining(setup: Setup, state: ModelState) -> dict[str, Any]:
     whiten = whiteners_of(state.fit.residuals, setup.probes)
     dt = float(np.mean(np.diff(setup.record.t)))
     shafts = shaft_frequencies(state)
-    probes = {}
+    probes, resolved = {}, []
     for p in setup.probes:
         r = np.asarray(state.fit.residuals[p], float)
+        if below_resolution(r, setup.record[p]):  # a shape this small is no evidence
+            resolved.append(p)
+            continue
         e = whiten[p].apply(r)
         lines = significant_lines(e, dt)
         structured = max(lines.structured, transient_excess(e))
@@ -53,7 +62,8 @@ def remaining(setup: Setup, state: ModelState) -> dict[str, Any]:
         if share >= MIN_SHARE or pval <= 1e-3:
             probes[p] = entry
     structure = bool(probes)
-    return {"structure": structure, "probes": probes, "note": _note(probes)}
+    return {"structure": structure, "probes": probes, "note": _note(probes, resolved),
+            "below_resolution": resolved}
 
 
 def shaft_frequencies(state: ModelState) -> dict[str, tuple[float, bool]]:
@@ -215,6 +225,8 @@ def _follows(setup: Setup, state: ModelState, r: np.ndarray, sigma: float
     # the power above the noise level: ranks of raw power would follow a noise whose level
     # scales with a probe as readily as structure
     power = np.clip(per_window(np.square(r)) - sigma ** 2, 0.0, None)
+    if np.ptp(power) == 0.0:  # no window above the noise: nothing rises with anything
+        return []
     drivers = {"time": t}
     for q in setup.probes:
         try:
@@ -248,8 +260,11 @@ def _follow_text(entry: dict[str, Any]) -> str:
     return ("; " + ", ".join(parts) + " (rank correlation over the record)") if parts else ""
 
 
-def _note(probes: dict[str, Any]) -> str:
+def _note(probes: dict[str, Any], resolved: list[str] | None = None) -> str:
     if not probes:
+        if resolved:
+            return (f"nothing significant remains: the model matches {', '.join(resolved)} to "
+                    f"within {RESOLUTION:g} of the spread, finer than any record resolves")
         return "nothing significant remains: the residual is noise"
     parts = []
     for p, e in probes.items():

@@ -55,7 +55,15 @@ from circuitsim.loop.diagnose.decide import (
 from circuitsim.loop.diagnose.describe import remaining
 from circuitsim.loop.diagnose.netlist_out import _with_values
 from circuitsim.loop.diagnose.noise import delta_bic, whiteners_of
-from circuitsim.loop.diagnose.residual import _orders, adc_step, analyse, noise_sigma
+from circuitsim.loop.diagnose.residual import (
+    RESOLUTION,
+    _orders,
+    adc_step,
+    analyse,
+    below_resolution,
+    noise_sigma,
+    spread,
+)
 from circuitsim.loop.diagnose.result import Accepted, Diagnosis, DiagnosisError
 from circuitsim.loop.diagnose.screen import (
     Screen,
@@ -140,7 +148,7 @@ def fit_declared(netlist, record, free, probes, params, rtol, max_effects, progr
         raise DiagnosisError(f"probe(s) {', '.join(missing)} are not both a column of the "
                              f"record ({', '.join(record.names)}) and a probe of the netlist "
                              f"({', '.join(model.probe_names)})")
-    first = Setup(record, names, {p: _spread(record[p]) for p in names}, tuple(free), rtol,
+    first = Setup(record, names, {p: spread(record[p]) for p in names}, tuple(free), rtol,
                   max_effects, progress)
     fit0 = refit(first, model, list(free), dict(params or {}), {}, staged=True, nfev=100)
     weights = {p: _noise_weight(fit0.residuals[p], record[p]) for p in names}
@@ -161,19 +169,20 @@ def _expect_grid(raw) -> None:
         ahead.expect([c.apply(raw) for c in candidates(build(raw)) if c.grid], replace=True)
 
 
-def _spread(x) -> float:
-    return max(float(np.std(np.asarray(x, float))), 1e-300)
-
-
 def _noise_weight(residual, measured) -> float:
     """A probe's noise level [unit]: the white level of its residual, never below its ADC's
     rounding noise (a record quantised coarser than its noise) nor a millionth of its spread
     (a noise-free record)."""
     return max(noise_sigma(np.asarray(residual, float), adc_step(measured)),
-               1e-6 * _spread(measured))
+               RESOLUTION * spread(measured))
 
 
 # ------------------------------------------------------------------------------- search
+
+def _resolved(setup: Setup, state: ModelState) -> bool:
+    """Every probe's residual is below the resolution of a record: nothing left to find."""
+    return all(below_resolution(state.fit.residuals[p], setup.record[p]) for p in setup.probes)
+
 
 def search(setup: Setup, state: ModelState, screen_top: int, clock: dict[str, float]
            ) -> tuple[ModelState, dict[str, Any]]:
@@ -181,7 +190,8 @@ def search(setup: Setup, state: ModelState, screen_top: int, clock: dict[str, fl
     log: dict[str, Any] = {"rejected": [], "indistinct": [], "trials": {}, "tried": set()}
     clock.setdefault("screen", 0.0)
     clock.setdefault("refit", 0.0)
-    while sum(not c.correction for c in state.chosen) < setup.max_effects:
+    while (sum(not c.correction for c in state.chosen) < setup.max_effects
+           and not _resolved(setup, state)):
         t0 = time.perf_counter()
         screens = _screen_round(setup, state, log)
         clock["screen"] += time.perf_counter() - t0

@@ -14,6 +14,24 @@ ORDER_TOL = 0.03  # a spectral peak is order k when |f/f_shaft - k| < ORDER_TOL 
 ORDER_SHARE = 0.25
 
 
+#: The finest a record resolves, as a fraction of a probe's spread: no sensor reads better than
+#: 20 bits of its range, and the integrator's own error (rtol 1e-8) is far below it. A residual
+#: this small is no evidence of anything, whatever its shape (a noise-free record made by the
+#: same model leaves 1e-8 of its spread, all of it smooth).
+RESOLUTION = 1e-6
+
+
+def spread(x) -> float:
+    """A probe's standard deviation over the record [unit] (never 0)."""
+    return max(float(np.std(np.asarray(x, float))), 1e-300)
+
+
+def below_resolution(r, measured) -> bool:
+    """The residual ``r`` is at most the resolution any record of ``measured`` carries."""
+    return float(np.sqrt(np.mean(np.square(np.asarray(r, float))))) <= RESOLUTION * spread(
+        measured)
+
+
 def noise_sigma(r: np.ndarray, step: float = 0.0) -> float:
     """White-noise level of a residual from its third differences (robust: median), never
     below the quantisation noise step/sqrt(12) of an ADC of ``step`` [probe unit].

@@ -91,6 +91,8 @@ class Diagnosis:
                              for a in self.effects)
         elif structure:
             head = "something remains that I cannot name: no effect of the catalog explains it"
+        elif self.remaining.get("below_resolution"):
+            head = "nothing significant: " + self.remaining["note"].split(": ", 1)[1]
         else:
             head = "nothing significant: no effect of the catalog explains the residual"
         fixes = "".join(f"; corrected the declared {a.effect} on {a.target} ("
