@@ -49,6 +49,30 @@ def test_a_window_of_too_few_points_says_so(write_netlist, capsys):
     assert "too few to judge" in capsys.readouterr().out
 
 
+def _sweep(tmp_path, *flags: str) -> int:
+    return main(["sweep", str(RLC), "--set", "C=1uF,2uF", "--out", str(tmp_path / "s.csv"),
+                 "--quiet", "--jobs", "1", "--stop", "1ms", *flags])
+
+
+@pytest.mark.parametrize("order", ["0", "-2"])
+def test_bad_sweep_flags_exit_2_before_any_run(tmp_path, capsys, order):
+    assert _sweep(tmp_path, "--jobs", "0") == 2
+    assert "--jobs is a whole number >= 1" in capsys.readouterr().err
+    with pytest.raises(SystemExit) as ei:  # argparse's own refusal
+        _sweep(tmp_path, "--order", order)
+    assert ei.value.code == 2 and "argument --order" in capsys.readouterr().err
+    assert not (tmp_path / "s.csv").exists()
+
+
+def test_an_unknown_sweep_metric_keeps_the_table_and_lists_the_columns(tmp_path, capsys):
+    out, png = tmp_path / "s.csv", tmp_path / "s.png"
+    code = _sweep(tmp_path, "--plot", str(png), "--metric", "v_c.maen")
+    err = capsys.readouterr().err
+    assert code == 2 and "--metric v_c.maen: the table has no such column" in err
+    assert "v_c.mean" in err  # the column meant is listed
+    assert len(out.read_text(encoding="utf-8").splitlines()) == 3 and not png.exists()
+
+
 @pytest.mark.parametrize("setting, words", [
     ("C=5ohm", "dimension"),
     ("Nope=1", "unknown parameter 'Nope'"),

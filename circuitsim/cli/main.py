@@ -426,6 +426,10 @@ def _sweep_plot(args, rows: list[dict], grid: dict, probes: list[str]) -> None:
         probe = (probes or [None])[0] or next(
             (k[:-len(".ripple_amp")] for k in rows[0] if k.endswith(".ripple_amp")), None)
         metric = f"{probe}.ripple_amp" if probe else None
+    if metric and rows and all(metric not in r for r in rows):
+        columns = ", ".join(k for k in rows[0] if k not in ("netlist", "message"))
+        raise ParameterError(f"--metric {metric}: the table has no such column (the table is "
+                             f"kept, no plot drawn); columns: {columns}")
     if swept and metric:
         plot_sweep(rows, swept[0], metric, args.plot)
         print(f"plot: {args.plot}", file=sys.stderr)
@@ -591,7 +595,7 @@ def _add_sweep(sub) -> None:
     w.add_argument("--metric", help="column to plot (default: PROBE.ripple_amp)")
     w.add_argument("--probe", "--probes", action="append", metavar="NAME[,NAME]",
                    help="probe(s) to report (default: all)")
-    w.add_argument("--order", type=float, help="ripple order per shaft revolution "
+    w.add_argument("--order", type=quantity("1"), help="ripple order per shaft revolution "
                    "(default: the dominant ripple)")
     w.add_argument("--stop", type=quantity("s"), help="stop time (e.g. 0.1, 10ms)")
     w.add_argument("--window", type=float, default=0.2,
@@ -699,9 +703,10 @@ def main(argv: list[str] | None = None) -> int:
         if window is not None and not 0 < window <= 1:
             print("error: --window is a fraction in (0, 1]", file=sys.stderr)
             return 2
-        if getattr(args, "decimate", 1) < 1:
-            print("error: --decimate is a whole number >= 1", file=sys.stderr)
-            return 2
+        for flag in ("decimate", "jobs"):
+            if getattr(args, flag, 1) < 1:
+                print(f"error: --{flag} is a whole number >= 1", file=sys.stderr)
+                return 2
         return int(args.func(args))
     except CircuitsimError as exc:
         print(f"error: {exc}", file=sys.stderr)
