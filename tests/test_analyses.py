@@ -215,6 +215,16 @@ def test_pss_refuses_a_period_that_is_not_the_drives(compile_text, period):
     assert ps["v"].mean() == pytest.approx(1.0, abs=1e-6)
 
 
+def test_pss_of_a_shaft_at_rest_says_why(compile_text):
+    """A motor on a step source that starts at 0: the operating point at t = 0 stands still,
+    the period 2 pi / (order w) was infinite and the user read "'tspan' must stictly
+    increase" after two numpy warnings."""
+    model = compile_text((NETLISTS / "examples" / "dc_motor.yaml").read_text(encoding="utf-8"))
+    with pytest.raises(ValueError, match=r"the shaft stands still at the operating point "
+                                         r"\(speed 0 rad/s"):
+        periodic_steady_state(model, order=1)
+
+
 @pytest.mark.parametrize("series", ["", "1 mohm"])
 def test_ac_of_a_source_across_a_capacitor(compile_text, series):
     """A voltage source straight across a capacitor: index reduction writes the capacitor's

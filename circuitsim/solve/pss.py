@@ -128,7 +128,14 @@ def _setup(model, params, order: float, period: float | None, rtol: float, atol:
         op = operating_point(model, params)
         y = op.y.copy()
         y[angles] = 0.0
-        T = 2 * np.pi / order / op.yp[angles[0]]
+        speed = float(op.yp[angles[0]])
+        if not abs(speed) > 0:  # a period 2 pi / (order w) would be infinite
+            raise ValueError(
+                f"the shaft stands still at the operating point (speed {speed:g} rad/s with the "
+                f"sources at their values at t = 0, as `circuitsim op` shows): a turning "
+                f"machine's periodic state needs a drive that turns it at t = 0 (a step "
+                f"source that starts at 0 does not), or give --period for a driven circuit")
+        T = 2 * np.pi / order / speed
         free = [k for k in range(nd) if k not in angles]
         return _Shooting(model, p, opts, free, angles, order, y, None), np.append(y[free], T)
     check_period(model, model.param_values(params), float(period))
