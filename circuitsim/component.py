@@ -94,6 +94,7 @@ class Param:
     nonnegative: bool = False
     integer: bool = False
     maximum: float | None = None
+    nonzero: bool = False  # a ratio of 0 locks what it couples, instead of coupling it
 
     def violation(self, value: float) -> str | None:
         """Why ``value`` [SI] is invalid, or None."""
@@ -105,6 +106,8 @@ class Param:
             return "must be positive"
         if self.nonnegative and value < 0:
             return "must not be negative"
+        if self.nonzero and value == 0:
+            return "must not be zero"
         if self.integer and float(value) != int(value):
             return "must be a whole number"
         return None

@@ -120,7 +120,8 @@ class IdealGear(Component):
 
     ports = (Flange("a"), Flange("b"))
     branches = (Branch("a", "b", "X"),)
-    ratio = Param("1", "speed ratio a.w / b.w")
+    ratio = Param("1", "speed ratio a.w / b.w, negative when the direction reverses",
+                  nonzero=True)
     eta = Param("1", "efficiency", default=1.0, positive=True, maximum=1.0)
 
     def equations(self, x):

@@ -194,3 +194,14 @@ def test_backlash_free_flight_then_elastic_contact(compile_text) -> None:
     after = t > t_out + 1e-3
     assert np.allclose(res["wa"][after], 0.0, atol=1e-5)
     assert np.allclose(res["wb"][after], 1.0, atol=1e-5)
+
+
+def test_a_gear_of_ratio_zero_is_refused_and_a_negative_one_reverses() -> None:
+    """Ratio 0 locked the motor (a.w = 0 b.w): every speed 0 under a 1 N m torque, exit 0."""
+    path = NETLISTS / "breadth" / "geared_load.yaml"
+    model = cs.compile(cs.load(path))
+    with pytest.raises(cs.ParameterError, match=r"Gear: Gear.ratio = 0 \[1\]: must not be zero"):
+        model.simulate(params={"N": 0.0})
+    ahead, back = (model.simulate(params={"N": n}, stop=0.2) for n in (10.0, -10.0))
+    assert np.allclose(back["w_load"], -ahead["w_load"], rtol=1e-6, atol=1e-9)
+    assert np.allclose(back["w_motor"], ahead["w_motor"], rtol=1e-6, atol=1e-9)

@@ -152,6 +152,26 @@ def test_a_block_using_itself_is_refused(tmp_path) -> None:
         cs.load(net)
 
 
+@pytest.mark.parametrize("port", ["gnd", "0", "fixed"])
+def test_a_port_named_like_a_global_reference_is_refused(tmp_path, port: str) -> None:
+    # bound to node b, port 'gnd' moved the block's ground there: b read 0.5 V (a divider)
+    # where the block's resistor to ground leaves b at 0 V, without a word
+    net = _write(tmp_path, "net.yaml", f"""
+        subcircuits:
+          s1:
+            ports: [in, '{port}']
+            components:
+              - {{name: R, type: R, p: in, n: gnd, R: 1}}
+        components:
+          - {{name: V1, type: V, p: a, n: gnd, V: 1}}
+          - {{name: X1, type: s1, in: a, '{port}': b}}
+          - {{name: R1, type: R, p: b, n: gnd, R: 1}}
+    """)
+    with pytest.raises(cs.NetlistError, match=rf"net.yaml:2: subcircuit 's1': port '{port}' is "
+                                              rf"a global reference .* name the port otherwise"):
+        cs.load(net)
+
+
 def test_flat_netlist_written_back_reloads(tmp_path) -> None:
     _write(tmp_path, "lib.yaml", LIB)
     net = _write(tmp_path, "net.yaml", """

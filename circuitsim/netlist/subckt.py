@@ -80,6 +80,12 @@ def read_subckts(doc: Mapping, path: str) -> dict[str, Subckt]:
         ports = body.get("ports") or []
         if not isinstance(ports, list) or not all(isinstance(p, str) for p in ports):
             raise NetlistError(f"subcircuit '{name}': 'ports:' is a list of names", loc)
+        for port in ports:  # bound to a node, it would move the block's own ground with it
+            if port in REFERENCES:
+                raise NetlistError(f"subcircuit '{name}': port '{port}' is a global reference "
+                                   f"({', '.join(sorted(REFERENCES))} each name one node, inside "
+                                   f"and outside every block); name the port otherwise, e.g. "
+                                   f"'{port}_local'", loc)
         params = body.get("parameters") or {}
         probes = body.get("probes") or {}
         comps = body["components"]
