@@ -121,10 +121,42 @@ def _pint_info(unit: str) -> tuple[float, Dim]:
         raise ValueError(f"unit '{unit}' is out of range") from exc
     except Exception as exc:  # pint raises several unrelated types
         raise ValueError(f"unknown unit '{unit}'") from exc
+    offset = _offset(ureg, unit)
+    if offset:
+        raise ValueError(
+            f"'{unit}' is an offset unit (0 {unit} = {offset:g} K): a value in it would be "
+            f"scaled by {factor:g}, not shifted. Write an absolute temperature alone "
+            f"('20 degC' is 293.15 K) or in K; a temperature difference in K or delta_{unit}")
     if not (math.isfinite(factor) and factor != 0.0 and math.isfinite(dim.angle)
             and all(math.isfinite(v) for _, v in dim.dims)):
         raise ValueError(f"unit '{unit}' is out of range")
     return factor, dim
+
+
+def _offset(ureg, unit: str) -> float:
+    """Where 0 of ``unit`` lies in SI [K]: 273.15 for degC, 0 for any scaled unit."""
+    try:
+        return float(ureg.Quantity(0.0, ureg.parse_units(unit)).to_base_units().magnitude)
+    except Exception:  # noqa: BLE001 - pint refuses offsets inside compound units: none here
+        return 0.0
+
+
+#: A temperature written alone in an offset unit: '20 degC', '68 degF', '-5 °C'
+_ABSOLUTE = re.compile(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*"
+                       r"(degC|degF|°C|°F|celsius|fahrenheit|degree_Celsius|degree_Fahrenheit)"
+                       r"\s*")
+
+
+def absolute_temperature(text: str) -> str | None:
+    """``text`` in kelvin (``'293.15[K]'``) when it is a number in an offset unit alone, such
+    as ``'20 degC'``; None for anything else (an offset unit elsewhere is refused by
+    ``unit_info``: ``2 * 20 degC`` has no single meaning)."""
+    m = _ABSOLUTE.fullmatch(text)
+    if m is None:
+        return None
+    ureg = registry()
+    kelvin = ureg.Quantity(float(m.group(1)), ureg.parse_units(m.group(2))).to("K").magnitude
+    return f"{float(kelvin)!r}[K]"  # brackets: never read as a SPICE kilo
 
 
 @functools.lru_cache(maxsize=1)

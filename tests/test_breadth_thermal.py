@@ -66,3 +66,24 @@ def test_thermally_coupled_motor_reaches_the_fixed_point() -> None:
     assert res["T_winding"][-1] == pytest.approx(T, abs=1e-3)
     assert res["i"][-1] == pytest.approx(i, rel=1e-6)
     assert res["w"][-1] == pytest.approx(k * i / b, rel=1e-6)
+
+
+@pytest.mark.parametrize("ambient", ["20 degC", "68 degF", "20°C", "293.15 K"])
+def test_an_ambient_in_celsius_or_fahrenheit_is_the_same_kelvin(write_netlist, ambient) -> None:
+    """'20 degC' became 20 x 274.15 = 5483 K (pint's factor of an offset unit): the winding
+    'settled' at 5517 K, exit 0. Alone, it is 293.15 K; anywhere else it is refused."""
+    text = (NETLISTS / "breadth" / "thermal_motor.yaml").read_text(encoding="utf-8")
+    net = cs.load(write_netlist(text.replace("T_amb: 293.15 K", f"T_amb: {ambient}")))
+    assert net.parameters["T_amb"].value == pytest.approx(293.15, abs=1e-9)
+    for bad in ("2 * 20 degC", "T_c + 5[degC]"):
+        with pytest.raises(cs.CircuitsimError, match=r"'degC' is an offset unit \(0 degC = "
+                                                    r"273.15 K\).*'20 degC' is 293.15 K"):
+            cs.load(write_netlist(text.replace("T_amb: 293.15 K",
+                                               f"T_amb: {bad}\n  T_c: 290 K")))
+
+
+def test_a_temperature_where_a_voltage_belongs_is_refused(write_netlist) -> None:
+    # rewritten as '293.15 K' it was read as a SPICE kilo: a 293 kV supply
+    text = (NETLISTS / "breadth" / "thermal_motor.yaml").read_text(encoding="utf-8")
+    with pytest.raises(cs.ParameterError, match=r"Vs: .*has dimension K"):
+        cs.load(write_netlist(text.replace("V: V}", "V: 20 degC}")))

@@ -73,6 +73,18 @@ def test_an_unknown_sweep_metric_keeps_the_table_and_lists_the_columns(tmp_path,
     assert len(out.read_text(encoding="utf-8").splitlines()) == 3 and not png.exists()
 
 
+def test_set_an_ambient_in_fahrenheit(capsys):
+    thermal = str(NETLISTS / "breadth" / "thermal_motor.yaml")
+    means = []
+    for ambient in ("T_amb=68degF", "T_amb=293.15K"):
+        assert main(["run", thermal, "--no-files", "--json", "--stop", "60s", "--set",
+                     ambient]) == 0
+        means.append(json.loads(capsys.readouterr().out)["probes"]["T_winding"]["mean"])
+    assert means[0] == pytest.approx(means[1], abs=1e-9)
+    assert main(["run", thermal, "--no-files", "--set", "V=20 degC"]) == 2  # not 293 kV
+    assert "has dimension K" in capsys.readouterr().err
+
+
 @pytest.mark.parametrize("setting, words", [
     ("C=5ohm", "dimension"),
     ("Nope=1", "unknown parameter 'Nope'"),

@@ -80,6 +80,8 @@ def _error(call) -> str:
      "rec.csv:6", ["row 6, column 'speed'", "'1 rpm' is not a number", "SI units"]),
     ("time,speed,i_total\n" + _rows(4) + "0.004,nan,2\n" + _rows(5),
      "rec.csv:6", ["row 6, column 'speed'", "missing or NaN", "interpolate"]),
+    ("time,speed [degC],i_total\n" + _rows(9), "rec.csv:1",
+     ["column 'speed [degC]'", "offset unit", "scaled by 274.15, not shifted"]),
     ("time,speed,i_total\n" + _rows(4) + "0.004,-inf,2\n" + _rows(5),
      "rec.csv:6", ["row 6, column 'speed'", "is -inf (infinite", "interpolate"]),
     ("time,speed,i_total\n" + _rows(4) + "0.004,,2\n" + _rows(5),

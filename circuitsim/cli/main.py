@@ -34,8 +34,15 @@ def parse_quantity(text: str, unit: str) -> float:
     Raises ValueError saying what was wrong.
     """
     from circuitsim.netlist import expr as ex
-    from circuitsim.units import compatible, explain_mismatch, spice_value, unit_info
+    from circuitsim.units import (
+        absolute_temperature,
+        compatible,
+        explain_mismatch,
+        spice_value,
+        unit_info,
+    )
 
+    text = absolute_temperature(text) or text  # '20 degC' is 293.15 K
     target = unit_info(unit)[1]
     plain = spice_value(text, target)
     if plain is not None:
@@ -78,7 +85,13 @@ def quantity(unit: str, minimum: float | None = 0.0, inclusive: bool = False
 def _parse_sets(model, items: list[str]) -> dict[str, float]:
     """``NAME=VALUE`` pairs -> SI floats, units checked against the parameter."""
     from circuitsim.netlist import expr as ex
-    from circuitsim.units import compatible, explain_mismatch, spice_value, unit_info
+    from circuitsim.units import (
+        absolute_temperature,
+        compatible,
+        explain_mismatch,
+        spice_value,
+        unit_info,
+    )
 
     out: dict[str, float] = {}
     comp_units = {n: v.unit for c in model.netlist.components for n, v in c.values.items()}
@@ -86,6 +99,7 @@ def _parse_sets(model, items: list[str]) -> dict[str, float]:
         if "=" not in item:
             raise ParameterError(f"--set takes NAME=VALUE, got '{item}'")
         name, text = (s.strip() for s in item.split("=", 1))
+        text = absolute_temperature(text) or text  # '20 degC' is 293.15 K
         if name in model.netlist.parameters:
             target = model.netlist.parameters[name].dim
             unit = str(target) if target else None

@@ -37,7 +37,15 @@ from circuitsim.netlist import expr as ex
 from circuitsim.netlist.lines import yaml_line as _loc
 from circuitsim.netlist.pwlfile import pwl_points
 from circuitsim.netlist.subckt import flatten, read_subckts
-from circuitsim.units import Dim, compatible, describe, explain_mismatch, spice_value, unit_info
+from circuitsim.units import (
+    Dim,
+    absolute_temperature,
+    compatible,
+    describe,
+    explain_mismatch,
+    spice_value,
+    unit_info,
+)
 
 SCHEMA_PATH = Path(__file__).with_name("schema.json")
 
@@ -504,6 +512,7 @@ def _parse_value(text: Any, loc: SourceLoc, what: str, comp: str | None = None,
     """Parse a value; ``unit`` (the expected one, if known) decides a SPICE suffix that is also
     a unit (``1F`` on a capacitor is a farad; see ``units.spice_value``)."""
     if isinstance(text, str):
+        text = absolute_temperature(text) or text  # '20 degC' is 293.15 K, not 20 x 274.15
         try:
             target = unit_info(unit)[1] if unit is not None else None
             plain = spice_value(text, target)

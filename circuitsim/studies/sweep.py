@@ -39,16 +39,23 @@ def parse_range(text: str, unit: str | None = None, dim=None) -> list[float]:
     ``units.spice_value`` for ``1F`` and ``1M``).
     """
     from circuitsim.netlist import expr as ex
-    from circuitsim.units import compatible, explain_mismatch, spice_value, unit_info
+    from circuitsim.units import (
+        absolute_temperature,
+        compatible,
+        explain_mismatch,
+        spice_value,
+        unit_info,
+    )
 
     target = dim if dim is not None else (unit_info(unit)[1] if unit else None)
 
     def num(s: str) -> float:
+        read = absolute_temperature(s) or s  # '20 degC' is 293.15 K
         try:
-            plain = spice_value(s, target)
+            plain = spice_value(read, target)
             if plain is not None:
                 return float(plain)
-            node = ex.parse(s.strip())
+            node = ex.parse(read.strip())
             if ex.names(node):
                 raise ex.ExprError("names are not allowed here", s, 0)
             value = ex.evaluate(node, {})
