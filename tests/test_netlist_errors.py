@@ -14,6 +14,7 @@ import signal
 import warnings
 from pathlib import Path
 
+import numpy as np
 import pytest
 from hypothesis import HealthCheck, event, given, settings
 from hypothesis import strategies as st
@@ -205,6 +206,29 @@ def test_analysis_settings_that_would_give_a_wrong_answer(write_netlist, setting
     with pytest.raises(cs.ParameterError) as ei:
         cs.load(path)
     _check(ei.value, path, 7, None, "analysis", *words)
+
+
+@pytest.mark.parametrize(("kw", "words"), [
+    # each of these returned a result before: t = [0] alone with success True (t_eval beyond
+    # stop, a NaN time), values at a negative time, or IDA's own error printed mid-run
+    ({"stop": 1e-3, "t_eval": [0.0, 2e-3]}, "outside the run from 0 to stop"),
+    ({"t_eval": [-1e-3, 1e-3]}, "outside the run from 0 to stop"),
+    ({"t_eval": [0.0, 2e-3, 1e-3]}, "t_eval must increase: t_eval[2]"),
+    ({"t_eval": [0.0, math.nan]}, "non-empty list of finite times"),
+    ({"t_eval": []}, "non-empty list of finite times"),
+    ({"stop": math.inf}, "positive and finite"),
+    ({"atol": -1.0}, "absolute tolerance must be positive"),
+    ({"max_step": -1.0}, "must be 0 (unbounded) or a positive time"),
+    ({"decimate": 0}, "whole numbers >= 1"),
+    ({"chunk": 0}, "whole numbers >= 1"),
+])
+def test_api_run_settings_that_mean_nothing_are_refused(kw, words):
+    model = _compile(cs.load(Path(__file__).resolve().parent.parent / "netlists" / "examples"
+                             / "rlc.yaml"))
+    kw = {k: (np.asarray(v, float) if k == "t_eval" else v) for k, v in kw.items()}
+    with pytest.raises(cs.SolverError) as ei:
+        model.simulate(**kw)
+    assert words in str(ei.value)
 
 
 def test_api_refuses_the_same_settings():

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import dataclasses
 import itertools
+import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
@@ -76,8 +77,8 @@ def settings(model, stop: float | None = None, step: float | None = None,
     """Fill the run's settings from the netlist's analysis where not given."""
     an = model.netlist.analysis
     stop = float(stop if stop is not None else an.stop)
-    if not stop > 0:
-        raise SolverError("stop time must be positive")
+    if not 0 < stop < math.inf:
+        raise SolverError(f"stop time must be positive and finite, not {stop:g} s")
     init = init or an.init
     if init not in ("rest", "op"):
         raise SolverError(f"init must be 'rest' or 'op', not {init!r}")
@@ -90,9 +91,32 @@ def settings(model, stop: float | None = None, step: float | None = None,
         # at least [0, stop]: a step longer than twice the run rounded to one output, t = 0,
         # and the run reported '0 s simulated' with the values at rest
         t_eval = np.linspace(0.0, stop, max(1, round(stop / h)) + 1)
-    return Settings(stop, np.asarray(t_eval, float), an.rtol if rtol is None else rtol,
-                    an.atol if atol is None else atol,
-                    an.max_step if max_step is None else max_step, init)
+    run = Settings(stop, np.asarray(t_eval, float), an.rtol if rtol is None else rtol,
+                   an.atol if atol is None else atol,
+                   an.max_step if max_step is None else max_step, init)
+    problem = _settings_problem(run)
+    if problem:
+        raise SolverError(problem)
+    return run
+
+
+def _settings_problem(run: Settings) -> str:
+    """What makes a run's settings meaningless, or '': output times the integration never
+    reaches (IDA returned t = 0 alone, with success) and tolerances IDA refuses mid-run."""
+    t = run.t_eval
+    if t.ndim != 1 or t.size == 0 or not np.all(np.isfinite(t)):
+        return "t_eval must be a non-empty list of finite times [s]"
+    if t[0] < 0 or t[-1] > run.stop * (1 + 1e-12):
+        return (f"t_eval spans {t[0]:g} to {t[-1]:g} s, outside the run from 0 to stop = "
+                f"{run.stop:g} s: the model starts at rest at t = 0; raise stop or trim t_eval")
+    if t.size > 1 and not np.all(np.diff(t) > 0):
+        k = int(np.argmax(np.diff(t) <= 0)) + 1
+        return f"t_eval must increase: t_eval[{k}] = {t[k]:g} s after {t[k - 1]:g} s"
+    if not 0 < run.atol < math.inf:
+        return f"atol = {run.atol:g}: the absolute tolerance must be positive and finite"
+    if not 0 <= run.max_step < math.inf:
+        return f"max_step = {run.max_step:g} s: must be 0 (unbounded) or a positive time"
+    return ""
 
 
 def simulate(model, stop: float | None = None, params: Mapping[str, float] | None = None, *,
@@ -117,6 +141,8 @@ def simulate(model, stop: float | None = None, params: Mapping[str, float] | Non
         waveform corner and every ``chunk`` output points); for a progress bar.
     """
     run = settings(model, stop, step, t_eval, rtol, atol, max_step, init)
+    if int(decimate) != decimate or decimate < 1 or int(chunk) != chunk or chunk < 1:
+        raise SolverError(f"decimate ({decimate}) and chunk ({chunk}) are whole numbers >= 1")
     values = model.param_values(params)
     # the sources' own step bound (a periodic source's period; a fast one is refused)
     run = dataclasses.replace(run, max_step=bound_step(model, values, run.stop, run.t_eval,
