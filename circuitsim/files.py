@@ -59,6 +59,8 @@ def check_output(path: str | os.PathLike, inputs: Iterable[str | os.PathLike] = 
         raise _usage(f"{what} '{p}' is a folder; name a file inside it")
     if os.path.exists(real) and not _is_regular(real):
         return  # a device or pipe (/dev/null, a FIFO) is written through
+    if what == "--plot":
+        plot_format(p)
     folder = os.path.dirname(real) or "."
     existing = folder
     while not os.path.exists(existing):
@@ -73,6 +75,25 @@ def check_output(path: str | os.PathLike, inputs: Iterable[str | os.PathLike] = 
     except OSError as exc:
         raise _usage(f"{what} '{p}': cannot create the folder {folder}: {exc.strerror}") \
             from None
+
+
+#: What a plot may be written as, chosen by its file's extension
+PLOT_FORMATS = ("png", "svg", "pdf")
+
+
+def plot_format(path: str | os.PathLike) -> str:
+    """The format of a plot file from its extension ('png' for a device such as /dev/null);
+    OutputError (exit 2) for any other: a PNG written into 'fig.txt' or 'fig.svg' is not
+    what was asked for."""
+    p = os.fspath(path)
+    if os.path.exists(p) and not _is_regular(p):
+        return "png"
+    ext = os.path.splitext(p)[1].lstrip(".").lower()
+    if ext not in PLOT_FORMATS:
+        stem = os.path.splitext(os.path.basename(p))[0] or "plot"
+        raise _usage(f"--plot '{p}': a plot is written as {', '.join(PLOT_FORMATS)}, chosen "
+                     f"by the file's extension; name it e.g. '{stem}.png'")
+    return ext
 
 
 def _usage(message: str) -> OutputError:

@@ -43,6 +43,19 @@ def test_run_refuses_to_overwrite_its_netlist(rc_copy, capsys):
     assert rc_copy.read_bytes() == before
 
 
+def test_the_plot_format_follows_its_extension_or_is_refused(rc_copy, tmp_path, capsys):
+    # a PNG was written into 'fig.txt' (and into 'fig.svg'), exit 0
+    out = str(tmp_path / "r.csv")
+    assert main(["run", str(rc_copy), "--out", out, "--plot", str(tmp_path / "fig.txt")]) == 2
+    assert "a plot is written as png, svg, pdf" in capsys.readouterr().err
+    assert not (tmp_path / "fig.txt").exists() and not (tmp_path / "r.csv").exists()
+    heads = {"svg": b"<?xml", "pdf": b"%PDF", "png": b"\x89PNG"}
+    for ext, head in heads.items():
+        fig = tmp_path / f"fig.{ext.upper() if ext == 'pdf' else ext}"
+        assert main(["run", str(rc_copy), "--out", out, "--plot", str(fig)]) == 0
+        assert fig.read_bytes().startswith(head), ext
+
+
 def test_run_refuses_a_link_to_its_netlist(rc_copy, tmp_path, capsys):
     link = tmp_path / "out.csv"
     link.symlink_to(rc_copy)

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from circuitsim.report.plots import save_figure
+
 
 def _plot_curve(curve, xlabel, ylabel, path) -> None:
     import matplotlib
@@ -18,7 +20,7 @@ def _plot_curve(curve, xlabel, ylabel, path) -> None:
     ax.set_ylabel(ylabel)
     ax.grid(True, alpha=0.3)
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    save_figure(fig, path)  # whole or not at all, in the format its extension names
     plt.close(fig)
 
 
@@ -37,5 +39,5 @@ def _plot_map(th, x, fit, direction, path) -> None:
     ax.set_ylabel("value")
     ax.legend(loc="upper right", fontsize=8)
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    save_figure(fig, path)  # whole or not at all, in the format its extension names
     plt.close(fig)
