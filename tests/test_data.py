@@ -182,6 +182,8 @@ class _Model:
     ("features:\n  - {kind: harmonic, probe: i_total, order: 8, amplitude: -1 A}\n", 2,
      ["amplitude must be positive"]),
     ("features:\n  - {kind: mean, probe: speed, value: 1\n", None, ["YAML syntax error"]),
+    ("features:\n  - {kind: mean, probe: T, value: 40 degC, sigma: 0.5 degC}\n", 2,
+     ["sigma: 'degC' is an offset unit", "in K"]),
 ])
 def test_feature_file_errors(tmp_path, body, line, words):
     p = _yaml(tmp_path, body)
@@ -205,6 +207,12 @@ def test_features_checked_against_the_netlist(tmp_path, entry, words):
     assert "feat.yaml:3:" in msg, msg
     for w in words:
         assert w in msg, (w, msg)
+
+
+def test_a_measured_temperature_in_celsius_is_absolute(tmp_path):
+    fs = load_features(_yaml(tmp_path, "features:\n  - {kind: mean, probe: T, value: 40 degC, "
+                                       "sigma: 0.5 K}\n"))
+    assert fs.features[0].value == pytest.approx(313.15, abs=1e-9)  # not 40 x 274.15
 
 
 def test_missing_features_file(tmp_path):

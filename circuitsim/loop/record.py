@@ -275,9 +275,15 @@ class FeatureSet:
                                 f.loc)
 
 
-def _feature_value(raw: Any, loc: SourceLoc, what: str) -> tuple[float, Any]:
-    """SI value and dimension (None for a bare number) of a number or '6200 rpm'."""
+def _feature_value(raw: Any, loc: SourceLoc, what: str, absolute: bool = False
+                   ) -> tuple[float, Any]:
+    """SI value and dimension (None for a bare number) of a number or '6200 rpm';
+    ``absolute``: a level, so '40 degC' alone is 313.15 K (a sigma in degC is refused)."""
     from circuitsim.netlist import expr as ex
+    from circuitsim.units import absolute_temperature
+
+    if absolute and isinstance(raw, str):
+        raw = absolute_temperature(raw) or raw
 
     if isinstance(raw, bool) or raw is None or isinstance(raw, (list, dict)):
         raise DataError(f"{what} must be a number with an optional unit (e.g. '0.38 A'), not "
@@ -376,7 +382,7 @@ def _parse_feature(e: Any, loc: SourceLoc, i: int) -> list[Feature]:
         if "value" not in e:
             raise DataError(f"{where} (mean of {probe}) needs 'value:', e.g. 'value: 6200 rpm'",
                             loc)
-        v, dim = _feature_value(e["value"], loc, f"{where}: value")
+        v, dim = _feature_value(e["value"], loc, f"{where}: value", absolute=True)
         s, sdim = _sigma(e, "sigma", loc, where)
         _same_dim(dim, sdim, loc, where)
         return [Feature("mean", probe, v, s, None, loc, dim)]
