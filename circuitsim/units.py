@@ -295,6 +295,11 @@ def _dim_names() -> dict[Dim, str]:
     return out
 
 
+def unit_name(dim: Dim) -> str:
+    """A dimension's common unit (``ohm``), else its base dimensions."""
+    return _dim_names().get(dim) or str(dim)
+
+
 def describe(dim: Dim) -> str:
     """A dimension in words: its unit's name when it has a common one (``ohm``), else the base
     dimensions."""

@@ -35,14 +35,19 @@ def _candidate(net, effect, target, order=None):
                 (order is None or c.fixed.get("order") == order))
 
 
-def make_record(patches, seed=0, extra=None):
-    """Simulate the motor with hidden effects, resample, add noise and quantise."""
-    net = cs.load(MOTOR)
-    raw, values = net.raw, {}
+def _hidden(patches):
+    """The motor's netlist with the effects patched in, and their values [SI]."""
+    raw, values = cs.load(MOTOR).raw, {}
     for effect, target, order, vals in patches:
         cand = _candidate(build(raw), effect, target, order)
         raw = cand.apply(raw)
         values.update(dict(zip(cand.free, vals, strict=True)))
+    return raw, values
+
+
+def make_record(patches, seed=0, extra=None):
+    """Simulate the motor with hidden effects, resample, add noise and quantise."""
+    raw, values = _hidden(patches)
     if extra is not None:
         raw = extra(raw)
     with warnings.catch_warnings():
@@ -130,12 +135,7 @@ def test_no_hidden_effect_no_false_alarm():
 
 def _exact(patches):
     """The motor with hidden effects, simulated at tight tolerance: no noise, no ADC."""
-    net = cs.load(MOTOR)
-    raw, values = net.raw, {}
-    for effect, target, order, vals in patches:
-        cand = _candidate(build(raw), effect, target, order)
-        raw = cand.apply(raw)
-        values.update(dict(zip(cand.free, vals, strict=True)))
+    raw, values = _hidden(patches)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         res = cs.compile(build(raw)).simulate(t_eval=T, params=values, rtol=1e-11, atol=1e-14)

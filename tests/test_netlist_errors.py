@@ -344,6 +344,19 @@ def test_expression_naming_unknown_parameter(write_netlist):
            "define it under 'parameters:'")
 
 
+def _r1_netlist(write_netlist, value: str):
+    """A source and R1 whose value is ``value``, the value on line 7."""
+    return write_netlist(f"""
+        components:
+          - {{name: V1, type: V, p: a, n: gnd, V: 1 V}}
+          - name: R1
+            type: R
+            p: a
+            n: gnd
+            R: {value}
+        """)
+
+
 @pytest.mark.parametrize(("value", "words"), [
     ("2 * (1 + 0.004 * t)", ("unknown parameter 't'", "the time t may appear only", "BV",
                              "waveform")),
@@ -353,15 +366,7 @@ def test_expression_naming_unknown_parameter(write_netlist):
 def test_a_value_naming_time_or_a_circuit_quantity_points_to_behavioural_parts(
         write_netlist, value, words):
     # 't' is reserved, so "define it under 'parameters:'" was advice the loader then refused
-    path = write_netlist(f"""
-        components:
-          - {{name: V1, type: V, p: a, n: gnd, V: 1 V}}
-          - name: R1
-            type: R
-            p: a
-            n: gnd
-            R: {value}
-        """)
+    path = _r1_netlist(write_netlist, value)
     with pytest.raises(cs.ParameterError) as ei:
         cs.load(path)
     _check(ei.value, path, 7, "R1", *words)
@@ -552,15 +557,7 @@ def test_yaml_nested_too_deeply(write_netlist):
     ("-_", "IndexError"),
 ])
 def test_yaml_scalar_the_parser_cannot_construct(write_netlist, value, shown):
-    path = write_netlist(f"""
-        components:
-          - {{name: V1, type: V, p: a, n: gnd, V: 1 V}}
-          - name: R1
-            type: R
-            p: a
-            n: gnd
-            R: {value}
-        """)
+    path = _r1_netlist(write_netlist, value)
     with pytest.raises(cs.NetlistError) as ei:
         cs.load(path)
     msg = str(ei.value)

@@ -29,36 +29,15 @@ ALLOW_HELP = ("let the netlist include or read tables from files outside its own
 
 def parse_quantity(text: str, unit: str) -> float:
     """A value typed on the command line, in SI: a number, a number with a unit (``10 ms``)
-    or with a SPICE multiplier (``10m``, ``2k``); the unit is checked against ``unit``.
+    or with a SPICE multiplier (``10m``, ``2k``), or a temperature alone in Celsius (``20
+    degC``); the unit is checked against ``unit``.
 
     Raises ValueError saying what was wrong.
     """
-    from circuitsim.netlist import expr as ex
-    from circuitsim.units import (
-        absolute_temperature,
-        compatible,
-        explain_mismatch,
-        spice_value,
-        unit_info,
-    )
+    from circuitsim.netlist.load import typed_value
+    from circuitsim.units import unit_info
 
-    text = absolute_temperature(text) or text  # '20 degC' is 293.15 K
-    target = unit_info(unit)[1]
-    plain = spice_value(text, target)
-    if plain is not None:
-        return float(plain)
-    try:
-        node = ex.parse(text)
-        if ex.names(node):
-            raise ValueError(f"'{text}' is not a number (names such as "
-                             f"{min(ex.names(node))!r} are not allowed here)")
-        value = ex.evaluate(node, {})
-        dim = ex.dimension(node, {})
-    except (ex.ExprError, ZeroDivisionError, OverflowError) as exc:
-        raise ValueError(str(exc)) from None
-    if node.kind == "unit" and dim is not None and not compatible(dim, target):
-        raise ValueError(explain_mismatch(dim, target, unit))
-    return value
+    return typed_value(text, unit_info(unit)[1], unit)
 
 
 def quantity(unit: str, minimum: float | None = 0.0, inclusive: bool = False
@@ -84,14 +63,8 @@ def quantity(unit: str, minimum: float | None = 0.0, inclusive: bool = False
 
 def _parse_sets(model, items: list[str]) -> dict[str, float]:
     """``NAME=VALUE`` pairs -> SI floats, units checked against the parameter."""
-    from circuitsim.netlist import expr as ex
-    from circuitsim.units import (
-        absolute_temperature,
-        compatible,
-        explain_mismatch,
-        spice_value,
-        unit_info,
-    )
+    from circuitsim.netlist.load import typed_value
+    from circuitsim.units import unit_info
 
     out: dict[str, float] = {}
     comp_units = {n: v.unit for c in model.netlist.components for n, v in c.values.items()}
@@ -99,25 +72,15 @@ def _parse_sets(model, items: list[str]) -> dict[str, float]:
         if "=" not in item:
             raise ParameterError(f"--set takes NAME=VALUE, got '{item}'")
         name, text = (s.strip() for s in item.split("=", 1))
-        text = absolute_temperature(text) or text  # '20 degC' is 293.15 K
         if name in model.netlist.parameters:
-            target = model.netlist.parameters[name].dim
-            unit = str(target) if target else None
+            target, unit = model.netlist.parameters[name].dim, None  # named by its dimension
         else:
             unit = comp_units.get(name)
             target = unit_info(unit)[1] if unit and unit != "1" else None
         try:
-            plain = spice_value(text, target)
-            node = ex.parse(plain if plain is not None else text)
-            if ex.names(node):
-                raise ex.ExprError("--set values may not name parameters", text, 0)
-            value = ex.evaluate(node, {})
-            dim = ex.dimension(node, {})
-        except (ex.ExprError, ValueError, ZeroDivisionError) as exc:
+            value = typed_value(text, target, unit)
+        except ValueError as exc:
             raise ParameterError(f"--set {name}: {exc}") from None
-        if node.kind == "unit" and target is not None and dim is not None and \
-                not compatible(dim, target):
-            raise ParameterError(f"--set {name}: {explain_mismatch(dim, target, unit or '')}")
         out[name] = value
     return out
 

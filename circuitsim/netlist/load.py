@@ -45,6 +45,7 @@ from circuitsim.units import (
     explain_mismatch,
     spice_value,
     unit_info,
+    unit_name,
 )
 
 SCHEMA_PATH = Path(__file__).with_name("schema.json")
@@ -533,6 +534,30 @@ def _parse_value(text: Any, loc: SourceLoc, what: str, comp: str | None = None,
         raise NetlistError(f"{what}: {exc}. Values are numbers with optional units "
                            f"('0.87 mH'), parameter names, or arithmetic of those.",
                            loc, comp) from None
+
+
+def typed_value(text: str, target: Dim | None = None, unit: str | None = None) -> float:
+    """A value typed outside a netlist (``--set``, ``--stop``, a sweep axis) in SI: a number,
+    a number with a unit (``10 ms``), with a SPICE multiplier (``2k``) or a temperature alone
+    in Celsius or Fahrenheit (``20 degC``); a unit is checked against ``target`` (named
+    ``unit`` in the message). ValueError saying what is wrong; names are refused."""
+    read = absolute_temperature(text) or text  # '20 degC' is 293.15 K
+    try:
+        plain = spice_value(read, target)
+        if plain is not None:
+            return float(plain)
+        node = ex.parse(read.strip())
+        if ex.names(node):
+            raise ValueError(f"'{text.strip()}' is not a number (names such as "
+                             f"{min(ex.names(node))!r} are not allowed here)")
+        value = ex.evaluate(node, {})
+        dim = ex.dimension(node, {})
+    except (ZeroDivisionError, OverflowError, KeyError) as exc:
+        raise ValueError(str(exc)) from None
+    if node.kind == "unit" and target is not None and dim is not None and \
+            not compatible(dim, target):
+        raise ValueError(explain_mismatch(dim, target, unit or unit_name(target)))
+    return value
 
 
 def _carries_units(node: ex.Node, dims: Mapping[str, Dim | None]) -> bool:

@@ -38,36 +38,18 @@ def parse_range(text: str, unit: str | None = None, dim=None) -> list[float]:
     units.Dim); a SPICE multiplier scales the number (``10k`` is 10 000; see
     ``units.spice_value`` for ``1F`` and ``1M``).
     """
-    from circuitsim.netlist import expr as ex
-    from circuitsim.units import (
-        absolute_temperature,
-        compatible,
-        explain_mismatch,
-        spice_value,
-        unit_info,
-    )
+    from circuitsim.netlist.load import typed_value
+    from circuitsim.units import unit_info
 
     target = dim if dim is not None else (unit_info(unit)[1] if unit else None)
 
     def num(s: str) -> float:
-        read = absolute_temperature(s) or s  # '20 degC' is 293.15 K
         try:
-            plain = spice_value(read, target)
-            if plain is not None:
-                return float(plain)
-            node = ex.parse(read.strip())
-            if ex.names(node):
-                raise ex.ExprError("names are not allowed here", s, 0)
-            value = ex.evaluate(node, {})
-            got = ex.dimension(node, {})
-        except (ex.ExprError, ValueError, KeyError, ZeroDivisionError) as exc:
-            raise ParameterError(f"sweep value '{s}': {exc}") from None
+            value = typed_value(s, target, unit)
+        except ValueError as exc:
+            raise ParameterError(f"sweep value '{s.strip()}': {exc}") from None
         if not math.isfinite(value):
             raise ParameterError(f"sweep value '{s.strip()}' is {value}: give a finite number")
-        if node.kind == "unit" and target is not None and got is not None and \
-                not compatible(got, target):
-            raise ParameterError(f"value '{s.strip()}': "
-                                 f"{explain_mismatch(got, target, unit or str(target))}")
         return value
 
     text = text.strip()
