@@ -113,6 +113,28 @@ def test_solver_failure_exits_1(write_netlist, capsys):
     assert "at t = " in err and "s.w" in err
 
 
+@pytest.mark.parametrize("gain", ["1", "0.5"])
+def test_equations_singular_at_their_values_are_named_as_such(write_netlist, capsys, gain):
+    """A VCVS of gain 1 on its own input: v = 1 * v holds for any v. Structurally sound, it
+    failed as 'convergence failed; fastest-changing variable' as if a tolerance were the
+    trouble. At gain 0.5 the same circuit is regular (v = 0) and runs."""
+    path = write_netlist(f"""
+        components:
+          - {{name: E1, type: E, p: a, n: gnd, cp: a, cn: gnd, gain: {gain}}}
+          - {{name: R1, type: R, p: a, n: gnd, R: 1 ohm}}
+        probes: {{v: a.v}}
+        analysis: {{stop: 1 ms}}
+    """)
+    code = main(["run", str(path), "--no-files"])
+    err = capsys.readouterr().err
+    if gain == "0.5":
+        assert code == 0, err
+        return
+    assert code == 1
+    assert "The equations are singular here, whatever the step" in err
+    assert "R1.p.i" in err and "fastest-changing" not in err
+
+
 def test_check_and_equations(capsys):
     assert main(["check", str(BASE)]) == 0
     out = capsys.readouterr().out

@@ -252,6 +252,7 @@ class System:
     names: tuple[str, ...]
     switching: events.Switching | None = None  # discrete states changed at roots
     rows: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(0))  # [s] stops
+    why_singular: Callable[[float, np.ndarray, np.ndarray], str] | None = None  # on failure
 
 
 def model_system(model, run: Settings, p: tuple) -> System:
@@ -269,7 +270,39 @@ def model_system(model, run: Settings, p: tuple) -> System:
         return consistent_initial(model, t, y, p, yp_guess=yp)
 
     return System(model.fns[0], opts, restart, model.state_names, switching,
-                  table_rows(model, run.stop))
+                  table_rows(model, run.stop),
+                  lambda t, y, yp: singular_pencil(model, p, t, y, yp, run.stop))
+
+
+#: [unknowns] the failure diagnosis below factors dense matrices up to this size
+PENCIL_MAX = 600
+
+
+def singular_pencil(model, p: tuple, t: float, y, yp, stop: float) -> str:
+    """Why IDA cannot step from (t, y, y'), when the reason is the equations themselves: the
+    iteration matrix dF/dy + c dF/dy' is singular for every step size c (tried at two widely
+    apart), so the unknowns it leaves undetermined are named. A structurally sound system
+    can be singular at its parameter values: a controlled source of gain 1 fed back on its
+    own input has the equation (1 - gain) v = 0 for any v. '' when the matrix is regular (the
+    failure is then about accuracy) or too large to factor here."""
+    n = len(model.state_names)
+    if not 0 < n <= PENCIL_MAX:
+        return ""
+    try:
+        Fy, Fyp, _ = model.sparse_parts(t, np.asarray(y, float), np.asarray(yp, float), p)
+        Fy, Fyp = Fy.toarray(), Fyp.toarray()
+        for c in (1e2 / stop, 1e8 / stop):
+            _, sv, vt = np.linalg.svd(Fy + c * Fyp)
+            if sv[-1] > 1e-13 * max(sv[0], 1e-300):
+                return ""
+    except (ValueError, np.linalg.LinAlgError, FloatingPointError):
+        return ""
+    null = np.abs(vt[-1])
+    names = [model.state_names[k] for k in np.flatnonzero(null > 0.1 * null.max())][:6]
+    return (f". The equations are singular here, whatever the step: they leave "
+            f"{', '.join(names)} undetermined (a source or coupling whose value cancels "
+            f"another's, such as a gain of 1 fed back on its own input, is the usual cause); "
+            f"`circuitsim equations NETLIST` shows the equations of these unknowns")
 
 
 def table_rows(model, stop: float) -> np.ndarray:
@@ -369,7 +402,7 @@ def _segment(system: System, run: Settings, a: float, b: float, eps: float,
             record(labels[lo:lo + done][w], got_y[1:][w], got_yp[1:][w])
         if not sol.success or done < part.size:
             t_fail = float(got_t[-1]) if got_t.size else state.t
-            return _failure(system.names, sol, t_fail, run.rtol, run.atol)
+            return _failure(system, sol, t_fail, run.rtol, run.atol)
         state.y, state.yp, state.t = got_y[-1], got_yp[-1], float(got_t[-1])
     return None
 
@@ -420,7 +453,7 @@ def _stepped(system: System, run: Settings, a: float, b: float, eps: float,
                 ida, sol = _stepper(system, state), None
                 continue
             if not sol.success:
-                return _failure(system.names, _Last(sol), float(sol.t), run.rtol, run.atol)
+                return _failure(system, _Last(sol), float(sol.t), run.rtol, run.atol)
             state.t, state.y, state.yp = tout, np.asarray(sol.y), np.asarray(sol.yp)
         if k < targets.size and wanted[k]:
             kept.append((labels[k], state.y, state.yp))
@@ -477,13 +510,17 @@ def _finite(res: SimResult) -> SimResult:
     return res
 
 
-def _failure(names: tuple[str, ...], sol, t_fail: float, rtol: float, atol: float) -> str:
+def _failure(system: System, sol, t_fail: float, rtol: float, atol: float) -> str:
     y = np.asarray(sol.y)
     yp = np.asarray(sol.yp)
-    name = "?"
+    name, singular = "?", ""
     if y.size:
         rate = np.abs(yp[-1]) / (rtol * np.abs(y[-1]) + atol)
-        name = names[int(np.argmax(rate))]
+        name = system.names[int(np.argmax(rate))]
+        if system.why_singular is not None:
+            singular = system.why_singular(t_fail, y[-1], yp[-1])
+    if singular:
+        return f"at t = {t_fail:.6g} s ({str(sol.message).strip()}){singular}"
     return (f"at t = {t_fail:.6g} s ({str(sol.message).strip()}); fastest-changing variable: "
             f"{name}. Try smaller tolerances or max_step, check the parameter values, or run "
             f"`circuitsim check NETLIST`")
