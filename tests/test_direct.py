@@ -3,6 +3,8 @@ the same steps and the same numbers as scikit-sundae calling the Python residual
 
 from __future__ import annotations
 
+import os
+
 import numpy as np
 import pytest
 
@@ -256,3 +258,99 @@ def test_kernel_powers_of_a_deep_sum():
     exec(compile(out.strip(), "kernel", "exec"), rewritten)  # noqa: S102 - generated here
     exec(compile(line.strip(), "kernel", "exec"), plain)  # noqa: S102 - generated here
     assert rewritten["r0"] == plain["r0"]
+
+
+def _both_watched(model, monkeypatch):
+    """``_both`` for a switching model, checking that the second run's segments went through
+    the compiled route (its root function) and the first's did not."""
+    from circuitsim.solve import direct
+
+    runs = []
+    solve = direct.DirectIDA.solve
+    monkeypatch.setattr(direct.DirectIDA, "solve",
+                        lambda self, *a: runs.append(os.environ["CIRCUITSIM_KERNELS"])
+                        or solve(self, *a))
+    python, kernels = _both(model, monkeypatch)
+    assert runs and set(runs) == {"numba"}
+    return python, kernels
+
+
+def _same_events(a, b) -> None:
+    """Two runs of a switching model: the same steps, values and switching instants."""
+    _same(a, b)
+    assert np.array_equal(a.t_events, b.t_events)
+
+
+def test_a_held_relation_is_watched_by_the_compiled_root_function(compile_text,
+                                                                  monkeypatch):
+    """A drive whose load reads abs(w) and whose friction reads sign(w), run through a
+    reversal: each relation's root is found by the kernels' root function, at the instant
+    and with the steps of the Python guards, to the bit."""
+    model = compile_text("""
+        parameters: {Tc: 0.02 N*m, cf: 1e-3}
+        components:
+          - {name: V1, type: V, p: a, n: gnd, V: {pwl: [[0, 0], [0.01, 24], [0.1, 24],
+             [0.15, -24], [0.3, -24]]}}
+          - {name: Ra, type: R, p: a, n: m1, R: 0.8}
+          - {name: La, type: L, p: m1, n: m2, L: 1.2 mH}
+          - {name: M, type: emf, p: m2, n: gnd, shaft: r, k_t: 0.15}
+          - {name: J, type: inertia, shaft: r, J: 3.5e-4}
+          - {name: Load, type: btorque, shaft: r,
+             expr: "-cf*r.w*abs(r.w) - Tc*tanh(r.w/0.01)"}
+        probes: {i: Ra.i, w: r.w}
+        analysis: {stop: 0.3, step: 50 us, rtol: 1e-9, atol: 1e-12}
+    """)
+    assert "def roots" in model.meta["kernels"]
+    python, kernels = _both_watched(model, monkeypatch)
+    assert python.t_events.size >= 1  # the reversal
+    _same_events(python, kernels)
+
+
+def test_component_events_are_watched_by_the_compiled_root_function(compile_text,
+                                                                    monkeypatch):
+    """An ideal diode (event-switched, with its hysteresis) and a switch that a capacitor's
+    own voltage opens and closes: the guards, the jumps and the restarts give the Python
+    route's steps and instants, to the bit."""
+    diode = compile_text("""
+        components:
+          - {name: V1, type: V, p: a, n: gnd, V: {sine: {amplitude: 10, freq: 50}}}
+          - {name: D1, type: D, p: a, n: b, model: ideal, Vf: 0.7, Ron: 0.1, Goff: 1e-9,
+             Vh: 1e-9}
+          - {name: C1, type: C, p: b, n: gnd, C: 100 uF}
+          - {name: R1, type: R, p: b, n: gnd, R: 100}
+        probes: {vc: b.v, on: D1.on}
+        analysis: {stop: 60 ms, step: 50 us, rtol: 1e-10, atol: 1e-12}
+    """)
+    relax = compile_text("""
+        components:
+          - {name: V1, type: V, p: in, n: gnd, V: 5 V}
+          - {name: R1, type: R, p: in, n: c, R: 1 kohm}
+          - {name: C1, type: C, p: c, n: gnd, C: 1 uF}
+          - {name: S1, type: S, p: c, n: gnd, cp: c, cn: gnd, model: ideal, Vt: 2.5 V,
+             Vh: 1 V, Ron: 10 ohm, Roff: 1 Gohm}
+        probes: {v: c.v, on: S1.on}
+        analysis: {stop: 8 ms, step: 1 us, rtol: 1e-10, atol: 1e-12}
+    """)
+    for model, switchings in ((diode, 6), (relax, 9)):
+        assert "def roots" in model.meta["kernels"]
+        python, kernels = _both_watched(model, monkeypatch)
+        assert python.t_events.size >= switchings
+        _same_events(python, kernels)
+
+
+def test_a_chattering_relation_stops_alike_on_both_routes(compile_text, monkeypatch):
+    """sign(w) friction coasting to rest has no consistent side there: both routes stop at
+    the same root with the chatter named."""
+    model = compile_text("""
+        parameters: {Tc: 2 N*m, b: 0.5 N*m*s/rad}
+        components:
+          - {name: J1, type: inertia, shaft: s, J: 1, w0: 10}
+          - {name: F1, type: btorque, shaft: s, expr: "-Tc*sign(s.w) - b*s.w"}
+        probes: {w: s.w}
+        analysis: {stop: 4, step: 1 ms, rtol: 1e-10, atol: 1e-12}
+    """)
+    python, kernels = _both_watched(model, monkeypatch)
+    for res in (python, kernels):
+        assert not res.success and "chatter" in res.message
+    assert np.array_equal(python.t_events, kernels.t_events)
+    assert np.array_equal(python.t, kernels.t) and np.array_equal(python.y, kernels.y)

@@ -21,9 +21,9 @@ import re
 import sys
 from typing import Any
 
-from circuitsim.solve.kernel_lib import KERNEL_LIB
+from circuitsim.solve.kernel_lib import BAND_ABS, BAND_REL, KERNEL_LIB
 
-CODEGEN_VERSION = "23"
+CODEGEN_VERSION = "24"  # 24: the root function among the kernels
 
 # [unknowns] from here on the residual's linear part is a sparse matrix product (measured on
 # RLC ladders: 5x slower than the scalar code at 16 unknowns, 2x at 50, equal at 100) ...
@@ -359,7 +359,7 @@ import math
 import numpy
 from numba import carray, njit
 
-from {KERNEL_LIB} import (JAC, RES, as_pointer, band_data, band_ldim, band_smu,  # noqa: F401
+from {KERNEL_LIB} import (JAC, RES, ROOT, as_pointer, band_data, band_ldim, band_smu,  # noqa: F401
                            data_of, libm_pow, sparse_data, sparse_ptrs, sparse_rows, tab,
                            tab_slope)
 
@@ -367,17 +367,22 @@ CFUNCS = {{}}
 '''
 
 
-def _kernels(F: list, jac_exprs: list, pattern: list, n: int, n_par: int, scalar
-             ) -> str | None:
+def _kernels(F: list, jac_exprs: list, pattern: list, n: int, n_par: int, scalar,
+             guards: tuple[list, list, list[int]] | None = None) -> str | None:
     """Source of numba ``cfunc`` kernels for IDA to call directly: the residual and the dense
     Jacobian (column-major) of one member, and of K members stacked (``ud`` = K, then each
     member's parameters) with the Jacobian in SUNDIALS' band storage, as ``solve/batch.py``
-    integrates them. A model reading run-time tables gets the first two only, the tables'
-    points in the user data after the parameters (``TABLES``; solve/direct.py)."""
+    integrates them; with ``guards`` (a switching model's, ``_guard_parts``) also IDA's root
+    function ``roots``. A model reading run-time tables gets the residual and the Jacobian
+    only, the tables' points in the user data after the parameters (``TABLES``;
+    solve/direct.py)."""
     src = [_KERNEL_HEADER.rstrip()]
     shared = _shared_kernels(F, jac_exprs, pattern, n, n_par, scalar)
     if not any("T[" in line or "TD[" in line for line in shared):
-        return "\n".join([*src, *shared]) + "\n"
+        roots = _roots(guards, n, n_par, scalar) if guards else []
+        if any("T[" in line or "TD[" in line for line in roots):
+            roots = []  # a guard reading a table: the switching stays on the Python route
+        return "\n".join([*src, *shared, *roots]) + "\n"
     vec = "carray(data_of({}), {}, dtype=numpy.float64)"
     h = max(n_par, 1) + 1  # the tables' header: ud[h - 1] = the user data's length, ...
     pre = [f"    y = {vec.format('yy', n)}", f"    d = {vec.format('ypv', n)}",
@@ -430,6 +435,48 @@ def _shared_kernels(F: list, jac_exprs: list, pattern: list, n: int, n_par: int,
                      ("        _jacobian_at(t, cj, y, d, p, a, o * ldim + smu, "
                      "numpy.int64(ldim - 1), o, q)")])
     return src
+
+
+def _guard_parts(dae, ren: dict) -> tuple[list, list, list[int]] | None:
+    """A switching model's guards for the kernels' root function: the components' event
+    guards, the held relations' distances and band scales (each list in the order and with
+    the expressions of the Python route's ``guards`` and ``crossings``, so that the common
+    subexpressions, and so the roundings, are the same), and each relation's mode index in
+    the parameters. None without switching."""
+    from circuitsim.component import as_expr
+
+    events, crossings = getattr(dae, "events", ()), getattr(dae, "crossings", ())
+    if not events and not crossings:
+        return None
+    where = {s: k for k, s in enumerate(dae.params)}
+    return ([as_expr(e.guard).xreplace(ren) for e in events], _held(crossings, ren),
+            [where[c.mode] for c in crossings])
+
+
+def _held(crossings, ren: dict) -> list:
+    """The held relations' distances (positive where each holds), then their band scales."""
+    return [c.distance.xreplace(ren) for c in crossings] + \
+           [c.scale.xreplace(ren) for c in crossings]
+
+
+def _roots(guards: tuple[list, list, list[int]], n: int, n_par: int, scalar) -> list[str]:
+    """IDA's root function as a cfunc (``ROOT``): the event guards, then per held relation
+    its distance, signed for the mode it holds (a parameter), plus its hysteresis band --
+    the arithmetic of ``solve/events.py``'s ``Switching.guards``, to the bit."""
+    events, held, modes = guards
+    k, n_ev = len(modes), len(events)
+    vec = "carray(data_of({}), {}, dtype=numpy.float64)"
+    lines = [f"    y, d = {vec.format('yy', n)}, {vec.format('ypv', n)}",
+             f"    p = carray(ud, {max(n_par, 1)}, dtype=numpy.float64)",
+             f"    g = carray(gout, {n_ev + k}, dtype=numpy.float64)"]
+    if events:
+        lines += _assignments(events, [f"g[{j}]" for j in range(n_ev)], n, n_par, scalar)
+    if held:
+        lines += _assignments(held, [f"h_{j}" for j in range(2 * k)], n, n_par, scalar)
+        lines += [f"    g[{n_ev + j}] = (h_{j} if p[{m}] > 0.5 else -h_{j}) + "
+                  f"{BAND_REL!r} * h_{k + j} + {BAND_ABS!r}" for j, m in enumerate(modes)]
+    return [*_wrapper("roots", "ROOT", "t, yy, ypv, gout, ud", lines),
+            f"N_ROOTS = {n_ev + k}"]
 
 
 def _member_body(name: str, args: str, exprs: list, targets: list[str], n: int, n_par: int,
@@ -649,15 +696,15 @@ def generate(dae) -> tuple[str, dict[str, Any]]:
     meta = _meta(dae, names_out, init_syms)
     for part in (_events, _crossings):  # separate factories: no cost without switching
         part_src, part_meta = part(dae, ren, n, n_par, scalar)
-        src += part_src
-        meta.update(part_meta)
+        src, meta = [*src, *part_src], {**meta, **part_meta}
     meta.update({"jac_nnz": len(pattern), "jac_pattern": [[i for i, _ in pattern],
                                                           [j for _, j in pattern]],
                  "fy_pattern": [[i for i, _ in fy], [j for _, j in fy]],
                  "fyp_pattern": [[i for i, _ in fyp], [j for _, j in fyp]], **lin_meta})
     # the kernels repeat the Python route's arithmetic (the sparse product from 100 unknowns)
-    meta["kernels"] = (_kernels(F, jac_exprs, pattern, n, n_par, scalar) if n < MATRIX_RESIDUAL_FROM
-                       else _large_kernels(rest, lin_meta, jac_exprs, pattern, n, n_par, scalar))
+    meta["kernels"] = (_kernels(F, jac_exprs, pattern, n, n_par, scalar, _guard_parts(dae, ren))
+                       if n < MATRIX_RESIDUAL_FROM else
+                       _large_kernels(rest, lin_meta, jac_exprs, pattern, n, n_par, scalar))
     return "\n".join(src), meta
 
 
@@ -697,8 +744,7 @@ def _crossings(dae, ren: dict, n: int, n_par: int, scalar
     if not crossings:
         return [], {"crossings": []}
     where = {s: k for k, s in enumerate(dae.params)}
-    out = [c.distance.xreplace(ren) for c in crossings] + \
-          [c.scale.xreplace(ren) for c in crossings]
+    out = _held(crossings, ren)
     src = ["def make_crossings(T, TD):"]
     src += _body("crossings", "t, y, yp, p", out, [f"out[{k}]" for k in range(len(out))],
                  n, n_par, scalar, pre=[f"        out = numpy.zeros({len(out)})"],

@@ -16,8 +16,12 @@ its Python route's arithmetic (the linear part as a CSR product, whose arrays tr
 user data) and IDA gets the same linear solver as there: the dense one, or from 400 unknowns
 SuperLU_MT on the Jacobian's compressed columns. A small model's run-time tables are
 interpolated in the kernels on their points, which travel in the user data too. Models without
-kernels (run-time tables at 100 unknowns or more), batches of models with tables, large
-batches and event functions stay with scikit-sundae.
+kernels (run-time tables at 100 unknowns or more), batches of models with tables and large
+batches stay with scikit-sundae. A switching model (events, relations held between roots:
+``solve/events.py``) of fewer than 100 unknowns without tables has its guards as a compiled
+root function too, which IDA watches as scikit-sundae has it watch the Python guards (every
+root terminal, falling through zero): the run stops at the root, to the bit where the Python
+route stops.
 """
 
 from __future__ import annotations
@@ -33,6 +37,9 @@ from typing import Any
 import numpy as np
 
 from circuitsim.solve.route import kernels_requested
+
+#: IDA's return flag for a root (SUNDIALS IDA_ROOT_RETURN)
+ROOT_RETURN = 2
 
 
 def wanted() -> bool:
@@ -51,6 +58,8 @@ class Result:
     message: str
     nfev: int
     njev: int
+    status: int = 0  # IDA's last flag (2: stopped at a root of the guards)
+    i_events: np.ndarray | None = None  # at a root: one row, IDA's root information
 
 
 @functools.cache
@@ -196,6 +205,11 @@ class DirectIDA:
         ida.IDASetId(mem, h["id"])
         ida.IDASetMaxStep(mem, float(o.get("max_step") or 0.0))
         ida.IDASetMaxNumSteps(mem, int(o.get("max_num_steps", 500)))
+        if o.get("eventsfn") is not None:  # the guards, as scikit-sundae hands them to IDA
+            h["roots"] = np.zeros(int(o["num_events"]), dtype=np.intc)
+            h["direction"] = np.asarray(o["eventsfn"].direction, dtype=np.intc)
+            ida.IDARootInit(mem, h["roots"].size, cfunc(self.module, "roots").address)
+            ida.IDASetRootDirection(mem, h["direction"].ctypes.data)
         return h
 
     def _matrix(self, lib, ctx, yy, n: int) -> tuple[Any, Any]:
@@ -260,12 +274,17 @@ class DirectIDA:
                 break
         keep = np.isin(out_t[:done], tspan)
         keep[0] = True
+        events = None
+        if flag == ROOT_RETURN:  # the root is the last row, as scikit-sundae appends it
+            keep[done - 1] = True
+            ida.IDAGetRootInfo(h["mem"], h["roots"].ctypes.data)
+            events = h["roots"][None, :].copy()
         counts = [ctypes.c_long(), ctypes.c_long()]
         ida.IDAGetNumResEvals(h["mem"], ctypes.byref(counts[0]))
         ida.IDAGetNumJacEvals(h["mem"], ctypes.byref(counts[1]))
         return Result(out_t[:done][keep], out_y[:done][keep], out_yp[:done][keep], flag >= 0,
                       ida_messages().get(flag, f"IDA flag {flag}"), counts[0].value,
-                      counts[1].value)
+                      counts[1].value, flag, events)
 
     @staticmethod
     def _free(lib, ctx, h: dict) -> None:
@@ -284,10 +303,12 @@ def ida_for(opts: dict) -> DirectIDA | None:
     cannot be built or the libraries cannot serve them: the Python route then runs, with one
     warning a process for each reason)."""
     model, members = opts["kernels_of"]
-    if not wanted() or opts.get("eventsfn"):
+    if not wanted():
         return None
     try:
         module = kernels(model)
+        if opts.get("eventsfn") is not None and not _roots_served(module, members, opts):
+            return None
         # found in the wheel layouts of Linux, macOS and Windows, and checked to be the build
         # the kernels read (solve/sundials_libs.py); otherwise this raises, naming why
         _libraries()
@@ -297,7 +318,7 @@ def ida_for(opts: dict) -> DirectIDA | None:
             data = _large_data(module, model, opts["userdata"])
         elif kind is not None and members is None and hasattr(module, "TABLES"):
             data = _table_data(model, opts["userdata"])
-        for name in _used(kind) if kind is not None else ():
+        for name in _used(kind, opts) if kind is not None else ():
             cfunc(module, name)  # compiled here, where a failure means the Python route
     except Exception as exc:  # noqa: BLE001 - numba and the libraries fail in many ways
         _LOADED[model.key] = None
@@ -327,10 +348,25 @@ def _warn_once(exc: Exception) -> None:
         warnings.warn(message, CircuitWarning, stacklevel=4)
 
 
-def _used(kind: str) -> tuple[str, str]:
-    """The residual and Jacobian kernels IDA calls with the linear solver ``kind``."""
-    return {"dense": ("residual", "jacobian"), "sparse": ("residual", "jacobian_sparse"),
+def _used(kind: str, opts: dict | None = None) -> tuple[str, ...]:
+    """The residual and Jacobian kernels IDA calls with the linear solver ``kind`` (and the
+    root function, when ``opts`` hand IDA guards)."""
+    used = {"dense": ("residual", "jacobian"), "sparse": ("residual", "jacobian_sparse"),
             "band": ("residual_batch", "jacobian_band")}[kind]
+    return (*used, "roots") if opts and opts.get("eventsfn") is not None else used
+
+
+def _roots_served(module, members, opts: dict) -> bool:
+    """Whether the kernels watch the guards IDA is handed: a single model whose kernels carry
+    the root function (not one reading tables, whose stops the Python step loop takes), with
+    as many guards as the Python route watches, every one terminal as there."""
+    if module is None or members is not None or opts.get("stops") is not None:
+        return False
+    if not hasattr(module, "roots") or hasattr(module, "TABLES"):
+        return False
+    fn = opts["eventsfn"]
+    return (module.N_ROOTS == int(opts["num_events"]) == len(fn.direction)
+            and all(bool(x) for x in getattr(fn, "terminal", [True] * module.N_ROOTS)))
 
 
 def _kind(module, model, members, linsolver: str | None) -> str | None:

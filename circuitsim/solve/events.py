@@ -26,6 +26,7 @@ import numpy as np
 
 from circuitsim.errors import SolverError
 from circuitsim.solve.init import consistent_initial
+from circuitsim.solve.kernel_lib import BAND_ABS, BAND_REL
 
 #: Rounds of event iteration at one instant before the switching is declared chattering
 #: (a half-bridge commutation takes three: gate off, diode on, dead time over).
@@ -39,11 +40,6 @@ ROOT_RETURN = 2
 #: (1e-10) is loose when some state is large: at 600 rad/s it left a current 2.5e-8 A off,
 #: and IDA's first step then failed its error test at atol 1e-9 down to h = 1e-17.
 RESTART_TOL = 1e-12
-#: Hysteresis of a held relation, relative to |lhs| + |rhs|, and an absolute floor: at its
-#: root IDA returns a point just past the crossing, so the new mode's guard is positive by
-#: that much; the band keeps the rounding of the restart from switching it straight back.
-BAND_REL = 1e-10
-BAND_ABS = 1e-300
 #: A relation exactly on its threshold at the start takes its truth this fraction of the run
 #: later (``t > 0`` at t = 0 starts true, as its root would otherwise be missed).
 LOOKAHEAD = 1e-9
@@ -206,9 +202,22 @@ def refuse(model, what: str) -> None:
                           f"(model: smooth, pwm_leg)")
 
 
+def watching_ida(residual, opts: dict):
+    """IDA watching the guards over a span: on the model's compiled kernels and root function
+    when a fit or a sweep asks for kernels and the model has them (``solve/direct.py``: the
+    same steps and roots, to the bit), else ``plain_ida``."""
+    if "kernels_of" in opts:
+        from circuitsim.solve.direct import ida_for
+
+        direct = ida_for(opts)
+        if direct is not None:
+            return direct
+    return plain_ida(residual, opts)
+
+
 def plain_ida(residual, opts: dict):
-    """scikit-sundae's IDA (the lean import); root functions have no compiled route, so the
-    compiled kernels a fit or a sweep asks for are not offered here."""
+    """scikit-sundae's IDA (the lean import) on the Python residual and guards; it also steps
+    one output at a time (``init_step``, ``step``), which the compiled route does not."""
     from circuitsim.solve.sundae import ida_class
 
     opts = {k: v for k, v in opts.items() if k != "kernels_of"}
@@ -239,8 +248,8 @@ def segment(system, run, a: float, b: float, eps: float, state, record, chunk: i
         part = targets[lo:lo + chunk]
         opts = {**system.opts, **sw.ida_options()}  # the modes held since the last switch
         try:
-            sol = plain_ida(system.residual, opts).solve(np.concatenate([[state.t], part]),
-                                                    state.y, state.yp)
+            sol = watching_ida(system.residual, opts).solve(
+                np.concatenate([[state.t], part]), state.y, state.yp)
         except Exception as exc:  # noqa: BLE001 - the wrapper raises assorted types
             return (f"at t = {state.t:.6g} s the integrator stopped ({exc!r}); try "
                     f"smaller tolerances or max_step")

@@ -107,8 +107,8 @@ IDA_SOLVE = types.ExternalFunction("IDASolve", types.int32(
 
 @njit(cache=True)
 def outputs(mem, yy, yp, tspan, Y, YP, out_t, out_y, out_yp):
-    """IDA_NORMAL to every output time, storing t, y and y' (the loop without Python); the
-    number of rows filled and IDA's last flag."""
+    """IDA_NORMAL to every output time, storing t, y and y' (the loop without Python), up to
+    and including a root of the guards; the number of rows filled and IDA's last flag."""
     tret = numpy.zeros(1)
     k, flag = 1, 0
     while k < tspan.size:
@@ -120,6 +120,8 @@ def outputs(mem, yy, yp, tspan, Y, YP, out_t, out_y, out_yp):
         out_y[k, :] = Y
         out_yp[k, :] = YP
         k += 1
+        if flag == 2:  # IDA_ROOT_RETURN: every guard is terminal; the root is the last row
+            break
     return k, flag
 
 
@@ -145,9 +147,19 @@ def tab_slope(u, h, i, x):
 
 
 RES = types.int32(types.float64, types.voidptr, types.voidptr, types.voidptr, types.voidptr)
+#: IDA's root function: g(t, yy, yp, gout, user_data), the guards into gout
+ROOT = types.int32(types.float64, types.voidptr, types.voidptr, types.voidptr, types.voidptr)
 JAC = types.int32(types.float64, types.float64, types.voidptr, types.voidptr, types.voidptr,
                   types.voidptr, types.voidptr, types.voidptr, types.voidptr, types.voidptr)
 '''
+
+#: Hysteresis of a held relation (a relation in an expression: abs, sign, min, max, if),
+#: relative to |lhs| + |rhs|, and an absolute floor: at its root IDA returns a point just past
+#: the crossing, so the new mode's guard is positive by that much; the band keeps the rounding
+#: of the restart from switching it straight back. Here because the kernels' root function
+#: (compiler/codegen.py) and the Python route's (solve/events.py) must add the same numbers.
+BAND_REL = 1e-10
+BAND_ABS = 1e-300
 
 #: the shared helpers' module name: their source's hash, so that numba's code kept for one
 #: version is never taken for another's

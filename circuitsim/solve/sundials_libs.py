@@ -137,6 +137,9 @@ def _signatures(vp, dbl, i32, lng) -> list:
             ("ida.IDASetUserData", i32, [vp, vp]), ("ida.IDASetMaxNumSteps", i32, [vp, lng]),
             ("ida.IDASetMaxStep", i32, [vp, dbl]), ("ida.IDASetId", i32, [vp, vp]),
             ("ida.IDASetStopTime", i32, [vp, dbl]),
+            ("ida.IDARootInit", i32, [vp, i32, vp]),
+            ("ida.IDASetRootDirection", i32, [vp, vp]),
+            ("ida.IDAGetRootInfo", i32, [vp, vp]),
             ("ida.IDASolve", i32, [vp, dbl, ptr(dbl), vp, vp, i32]),
             ("ida.IDAGetNumResEvals", i32, [vp, ptr(lng)]),
             ("ida.IDAGetNumJacEvals", i32, [vp, ptr(lng)])]
