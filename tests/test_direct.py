@@ -354,3 +354,31 @@ def test_a_chattering_relation_stops_alike_on_both_routes(compile_text, monkeypa
         assert not res.success and "chatter" in res.message
     assert np.array_equal(python.t_events, kernels.t_events)
     assert np.array_equal(python.t, kernels.t) and np.array_equal(python.y, kernels.y)
+
+
+def test_a_switching_model_reading_a_table_stops_at_rows_and_roots_to_the_bit(
+        compile_text, tmp_path, monkeypatch):
+    """A measured voltage command (rows between output times) drives a motor whose load
+    reads abs(w) through a reversal: the compiled loop stops at the rows and at the roots,
+    as the Python route's row-by-row stepping does, to the bit."""
+    t = np.linspace(0.0, 0.3, 41) + 0.00123
+    t[0] = 0.0
+    u = 24 * np.sin(2 * np.pi * t / 0.2)
+    rows = "".join(f"{float(a)!r},{float(b)!r}\n" for a, b in zip(t, u, strict=True))
+    (tmp_path / "u.csv").write_text("time,u\n" + rows)
+    model = compile_text("""
+        parameters: {cf: 1e-3}
+        components:
+          - {name: V1, type: V, p: a, n: gnd, V: {table: {file: u.csv, column: u}}}
+          - {name: Ra, type: R, p: a, n: m1, R: 0.8}
+          - {name: La, type: L, p: m1, n: m2, L: 1.2 mH}
+          - {name: M, type: emf, p: m2, n: gnd, shaft: r, k_t: 0.15}
+          - {name: J, type: inertia, shaft: r, J: 3.5e-4}
+          - {name: Load, type: btorque, shaft: r, expr: "-cf*r.w*abs(r.w)"}
+        probes: {i: Ra.i, w: r.w}
+        analysis: {stop: 0.3, step: 100 us, rtol: 1e-9, atol: 1e-12}
+    """)
+    assert "TABLES" in model.meta["kernels"] and "def roots" in model.meta["kernels"]
+    python, kernels = _both_watched(model, monkeypatch)
+    assert python.t_events.size >= 1 and python.t.size == 3001
+    _same_events(python, kernels)

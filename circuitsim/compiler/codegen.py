@@ -23,7 +23,7 @@ from typing import Any
 
 from circuitsim.solve.kernel_lib import BAND_ABS, BAND_REL, KERNEL_LIB
 
-CODEGEN_VERSION = "24"  # 24: the root function among the kernels
+CODEGEN_VERSION = "25"  # 24-25: the root function among the kernels (25: with tables)
 
 # [unknowns] from here on the residual's linear part is a sparse matrix product (measured on
 # RLC ladders: 5x slower than the scalar code at 16 unknowns, 2x at 50, equal at 100) ...
@@ -378,22 +378,23 @@ def _kernels(F: list, jac_exprs: list, pattern: list, n: int, n_par: int, scalar
     solve/direct.py)."""
     src = [_KERNEL_HEADER.rstrip()]
     shared = _shared_kernels(F, jac_exprs, pattern, n, n_par, scalar)
+    vec = "carray(data_of({}), {}, dtype=numpy.float64)"
+    one = [f"    y = {vec.format('yy', n)}", f"    d = {vec.format('ypv', n)}",
+           f"    p = carray(ud, {max(n_par, 1)}, dtype=numpy.float64)"]
     if not any("T[" in line or "TD[" in line for line in shared):
-        roots = _roots(guards, n, n_par, scalar) if guards else []
+        roots = _roots(guards, n, n_par, scalar, one) if guards else []
         if any("T[" in line or "TD[" in line for line in roots):
             roots = []  # a guard reading a table: the switching stays on the Python route
         return "\n".join([*src, *shared, *roots]) + "\n"
-    vec = "carray(data_of({}), {}, dtype=numpy.float64)"
     h = max(n_par, 1) + 1  # the tables' header: ud[h - 1] = the user data's length, ...
-    pre = [f"    y = {vec.format('yy', n)}", f"    d = {vec.format('ypv', n)}",
-           f"    p = carray(ud, {h - 1}, dtype=numpy.float64)",
-           (f"    u = carray(ud, int(carray(ud, {h}, dtype=numpy.float64)[{h - 1}]), "
-           "dtype=numpy.float64)")]
+    pre = [*one, (f"    u = carray(ud, int(carray(ud, {h}, dtype=numpy.float64)[{h - 1}]), "
+                  "dtype=numpy.float64)")]
     single = _kernel("residual", "RES", "t, yy, ypv, rr, ud", F, [f"r[{i}]" for i in range(n)],
                      [*pre, f"    r = {vec.format('rr', n)}"], n, n_par, scalar)
     single += _kernel("jacobian", "JAC", "t, cj, yy, ypv, rr, J, ud, t1, t2, t3", jac_exprs,
                       [f"a[{i + j * n}]" for i, j in pattern],
                       [*pre, f"    a = {vec.format('J', n * n)}"], n, n_par, scalar)
+    single += _roots(guards, n, n_par, scalar, pre) if guards else []
     single = [_table_calls(line, h) for line in single]
     return "\n".join([*src, *single, "", "", "TABLES = True"]) + "\n"
 
@@ -459,16 +460,15 @@ def _held(crossings, ren: dict) -> list:
            [c.scale.xreplace(ren) for c in crossings]
 
 
-def _roots(guards: tuple[list, list, list[int]], n: int, n_par: int, scalar) -> list[str]:
+def _roots(guards: tuple[list, list, list[int]], n: int, n_par: int, scalar, pre: list[str]
+           ) -> list[str]:
     """IDA's root function as a cfunc (``ROOT``): the event guards, then per held relation
     its distance, signed for the mode it holds (a parameter), plus its hysteresis band --
-    the arithmetic of ``solve/events.py``'s ``Switching.guards``, to the bit."""
+    the arithmetic of ``solve/events.py``'s ``Switching.guards``, to the bit. ``pre`` reads
+    the states, derivatives and parameters (and the tables' points) as the residual does."""
     events, held, modes = guards
     k, n_ev = len(modes), len(events)
-    vec = "carray(data_of({}), {}, dtype=numpy.float64)"
-    lines = [f"    y, d = {vec.format('yy', n)}, {vec.format('ypv', n)}",
-             f"    p = carray(ud, {max(n_par, 1)}, dtype=numpy.float64)",
-             f"    g = carray(gout, {n_ev + k}, dtype=numpy.float64)"]
+    lines = [*pre, f"    g = carray(gout, {n_ev + k}, dtype=numpy.float64)"]
     if events:
         lines += _assignments(events, [f"g[{j}]" for j in range(n_ev)], n, n_par, scalar)
     if held:

@@ -17,11 +17,11 @@ user data) and IDA gets the same linear solver as there: the dense one, or from 
 SuperLU_MT on the Jacobian's compressed columns. A small model's run-time tables are
 interpolated in the kernels on their points, which travel in the user data too. Models without
 kernels (run-time tables at 100 unknowns or more), batches of models with tables and large
-batches stay with scikit-sundae. A switching model (events, relations held between roots:
-``solve/events.py``) of fewer than 100 unknowns without tables has its guards as a compiled
-root function too, which IDA watches as scikit-sundae has it watch the Python guards (every
-root terminal, falling through zero): the run stops at the root, to the bit where the Python
-route stops.
+batches stay with scikit-sundae. A switching model (events, relations held between
+roots: ``solve/events.py``) of fewer than 100 unknowns has its guards as a compiled root
+function too (a table's rows are stops there as well), which IDA watches as scikit-sundae has
+it watch the Python guards (every root terminal, falling through zero): the run stops at the
+root, to the bit where the Python route stops.
 """
 
 from __future__ import annotations
@@ -270,7 +270,7 @@ class DirectIDA:
                 h["mem"].value, h["yy"], h["yp"], times[done - 1:end + 1], h["Y"], h["YP"],
                 out_t[done - 1:], out_y[done - 1:], out_yp[done - 1:])
             done += k - 1
-            if flag < 0:
+            if flag < 0 or flag == ROOT_RETURN:
                 break
         keep = np.isin(out_t[:done], tspan)
         keep[0] = True
@@ -358,11 +358,9 @@ def _used(kind: str, opts: dict | None = None) -> tuple[str, ...]:
 
 def _roots_served(module, members, opts: dict) -> bool:
     """Whether the kernels watch the guards IDA is handed: a single model whose kernels carry
-    the root function (not one reading tables, whose stops the Python step loop takes), with
-    as many guards as the Python route watches, every one terminal as there."""
-    if module is None or members is not None or opts.get("stops") is not None:
-        return False
-    if not hasattr(module, "roots") or hasattr(module, "TABLES"):
+    the root function, with as many guards as the Python route watches, every one terminal
+    as there."""
+    if module is None or members is not None or not hasattr(module, "roots"):
         return False
     fn = opts["eventsfn"]
     return (module.N_ROOTS == int(opts["num_events"]) == len(fn.direction)

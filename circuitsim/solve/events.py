@@ -205,13 +205,16 @@ def refuse(model, what: str) -> None:
 def watching_ida(residual, opts: dict):
     """IDA watching the guards over a span: on the model's compiled kernels and root function
     when a fit or a sweep asks for kernels and the model has them (``solve/direct.py``: the
-    same steps and roots, to the bit), else ``plain_ida``."""
+    same steps and roots, to the bit), else ``plain_ida``. Stops at a table's rows are
+    served by the compiled route only (``integrate._step_of`` sends such a model here then)."""
     if "kernels_of" in opts:
         from circuitsim.solve.direct import ida_for
 
         direct = ida_for(opts)
         if direct is not None:
             return direct
+    if opts.get("stops") is not None:
+        raise SolverError("a table's rows as stops need the compiled route")
     return plain_ida(residual, opts)
 
 
@@ -247,6 +250,8 @@ def segment(system, run, a: float, b: float, eps: float, state, record, chunk: i
     while lo < targets.size:
         part = targets[lo:lo + chunk]
         opts = {**system.opts, **sw.ida_options()}  # the modes held since the last switch
+        if system.rows.size:  # a table's rows: stops of the compiled route (integrate._step_of)
+            opts["stops"] = system.rows
         try:
             sol = watching_ida(system.residual, opts).solve(
                 np.concatenate([[state.t], part]), state.y, state.yp)

@@ -339,8 +339,7 @@ def integrate_system(system: System, run: Settings, edges: list[float],
             y, yp = system.switching.start(0.0, y, yp)
         except SolverError as exc:
             return Status.SOLVER_FAILED, exc.bare, 0, 0
-    step = (_stepped if system.switching is not None or not _direct(system) else _segment) \
-        if system.rows.size else events.segment if system.switching is not None else _segment
+    step = _step_of(system)
     first = run.t_eval[run.t_eval <= eps]
     if first.size:
         record(first[:1], y[None, :], yp[None, :])
@@ -407,14 +406,27 @@ def _segment(system: System, run: Settings, a: float, b: float, eps: float,
     return None
 
 
+def _step_of(system: System):
+    """How a segment between corners is integrated: ``_segment`` (no switching) or
+    ``events.segment`` (stopping at the guards' roots) over spans of output times, which the
+    compiled route also stops at a table's rows within; on the Python route, a model reading
+    tables steps from row to row (``_stepped``)."""
+    if system.rows.size and not _direct(system):
+        return _stepped
+    return _segment if system.switching is None else events.segment
+
+
 def _direct(system: System) -> bool:
     """Whether IDA runs on the model's compiled kernels (they stop at a table's rows in one
-    compiled loop: ``_segment`` then serves, with the rows as stops)."""
+    compiled loop, and at the guards' roots of a switching model)."""
     if "kernels_of" not in system.opts:
         return False
     from circuitsim.solve.direct import ida_for
 
-    return ida_for(system.opts) is not None
+    opts = system.opts
+    if system.switching is not None:
+        opts = {**opts, **system.switching.ida_options(), "stops": system.rows}
+    return ida_for(opts) is not None
 
 
 def _stop_plan(system: System, run: Settings, a: float, b: float, eps: float):
