@@ -368,3 +368,24 @@ def test_jacobian_stays_inside_the_bounds_and_reports_failures():
 
     J, bad = _jacobian(broken, np.zeros(2), 1e-4, space)
     assert bad == [0] and not J[:, 0].any()
+
+
+def test_fits_and_diagnoses_run_on_one_blas_thread():
+    """Their many small least squares run on one BLAS thread (a second one waits for a busy
+    core at every call: 40x slower measured), and the caller's setting comes back after."""
+    from threadpoolctl import threadpool_info
+
+    from circuitsim.loop.diagnose import diagnose
+    from circuitsim.loop.fit import fit_record
+    from circuitsim.solve.route import serial_blas
+
+    def blas_threads() -> list[int]:
+        return [d["num_threads"] for d in threadpool_info() if d["user_api"] == "blas"]
+
+    seen: list[int] = []
+    before = blas_threads()
+    serial_blas(lambda: seen.extend(blas_threads()))()
+    assert seen and set(seen) == {1}
+    assert blas_threads() == before
+    for fn in (diagnose, fit_record):  # both entries carry it
+        assert fn.__wrapped__ is not None

@@ -45,6 +45,7 @@ import numpy as np
 
 from circuitsim.errors import CircuitsimError, ParameterError, SolverError
 from circuitsim.loop.record import DataError, FeatureSet, Record
+from circuitsim.solve.route import serial_blas
 
 # |correlation| above which two estimates are reported as not told apart
 CORRELATION_LIMIT = 0.99
@@ -855,6 +856,7 @@ def slow_features(W, x: np.ndarray) -> np.ndarray:
     return np.concatenate([m, rms])
 
 
+@serial_blas
 def fit_record(model, record: Record, free: Sequence[str], *,
                params: Mapping[str, float] | None = None,
                bounds: Mapping[str, tuple[float, float]] | None = None,

@@ -10,9 +10,33 @@ the work that solves many times (fits, diagnoses, sweeps) asks for them through
 
 from __future__ import annotations
 
+import functools
 import os
+from collections.abc import Callable
+from typing import TypeVar
 
 _many = [False]
+_F = TypeVar("_F", bound=Callable)
+
+
+def serial_blas(fn: _F) -> _F:
+    """Run ``fn`` with one BLAS thread (threadpoolctl), restored after.
+
+    A fit or a diagnosis calls BLAS and LAPACK on small matrices (least squares of 10 000
+    samples by a few columns) thousands of times, while the second core is busy: the worker
+    compiling kernels ahead (``solve/ahead.py``), a sweep's other process, or anything else
+    on the machine. OpenBLAS's threads then wait for a core at every call: the slow-feature
+    windows of a 0.4 s, 25 kHz record took 0.82 s instead of 0.019 s, and a whole diagnosis
+    25.4 s instead of 6.6 s, with one other process busy on this 2-core machine
+    (``benchmarks/bench_diagnose.py``). At these sizes a second thread gains nothing."""
+    @functools.wraps(fn)
+    def wrapped(*args, **kwargs):
+        from threadpoolctl import threadpool_limits
+
+        with threadpool_limits(limits=1, user_api="blas"):
+            return fn(*args, **kwargs)
+
+    return wrapped  # type: ignore[return-value]
 
 
 def many_solves() -> None:

@@ -76,6 +76,7 @@ from circuitsim.loop.diagnose.screen import (
 from circuitsim.loop.diagnose.stability import stability
 from circuitsim.loop.effects import candidates
 from circuitsim.solve import ahead
+from circuitsim.solve.route import serial_blas
 
 SCREEN_TOP = 3  # candidates refitted with full simulation per round
 MAX_COMBINATIONS = 10  # joint swaps tried after an acceptance
@@ -86,6 +87,7 @@ MAX_COMBINATIONS = 10  # joint swaps tried after an acceptance
 NAMED_SHARE_MIN = 0.5
 
 
+@serial_blas
 def diagnose(netlist, record, free: Sequence[str] = (), *, probes: Sequence[str] | None = None,
              max_effects: int = MAX_EFFECTS, screen_top: int = SCREEN_TOP,
              rtol: float = 1e-8, params: Mapping[str, float] | None = None,
