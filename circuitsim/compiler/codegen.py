@@ -23,7 +23,7 @@ from typing import Any
 
 from circuitsim.solve.kernel_lib import BAND_ABS, BAND_REL, KERNEL_LIB
 
-CODEGEN_VERSION = "25"  # 24-25: the root function among the kernels (25: with tables)
+CODEGEN_VERSION = "26"  # 24-25: the root function (25: with tables); 26: batches with tables
 
 # [unknowns] from here on the residual's linear part is a sparse matrix product (measured on
 # RLC ladders: 5x slower than the scalar code at 16 unknowns, 2x at 50, equal at 100) ...
@@ -396,6 +396,7 @@ def _kernels(F: list, jac_exprs: list, pattern: list, n: int, n_par: int, scalar
                       [*pre, f"    a = {vec.format('J', n * n)}"], n, n_par, scalar)
     single += _roots(guards, n, n_par, scalar, pre) if guards else []
     single = [_table_calls(line, h) for line in single]
+    single += _batch_with_tables(F, jac_exprs, pattern, n, n_par, scalar)
     return "\n".join([*src, *single, "", "", "TABLES = True"]) + "\n"
 
 
@@ -435,6 +436,38 @@ def _shared_kernels(F: list, jac_exprs: list, pattern: list, n: int, n_par: int,
                      f"    a = carray(band_data(J), ldim * K * {n}, dtype=numpy.float64)", member,
                      ("        _jacobian_at(t, cj, y, d, p, a, o * ldim + smu, "
                      "numpy.int64(ldim - 1), o, q)")])
+    return src
+
+
+def _batch_with_tables(F: list, jac_exprs: list, pattern: list, n: int, n_par: int, scalar
+                       ) -> list[str]:
+    """The stacked kernels of K members of a model reading run-time tables: the member
+    bodies of ``_shared_kernels`` with the tables' points as arguments. The user data is K,
+    each member's parameters, then the tables as a single model's kernels read them after
+    its parameters (``hb - 1``: the data's length; from ``hb``, each table's start and
+    number of points; then the points), so that ``tab`` reads them alike."""
+    vec = "carray(data_of({}), {}, dtype=numpy.float64)"
+    many = ["    K = int(carray(ud, 1, dtype=numpy.float64)[0])",
+            f"    y, d = {vec.format('yy', f'K * {n}')}, {vec.format('ypv', f'K * {n}')}",
+            f"    p = carray(ud, 1 + K * {n_par}, dtype=numpy.float64)",
+            f"    hb = 2 + K * {n_par}",
+            ("    u = carray(ud, int(carray(ud, hb, dtype=numpy.float64)[hb - 1]), "
+             "dtype=numpy.float64)")]
+    member = f"    for k in range(K):\n        o, q = k * {n}, 1 + k * {n_par}"
+    src = _member_body("_residual_tab", "t, y, d, p, r, o, q, u, hb", F,
+                       [f"r[o + {i}]" for i in range(n)], n, n_par, scalar)
+    src += _member_body("_jacobian_tab", "t, cj, y, d, p, a, base, sj, o, q, u, hb", jac_exprs,
+                        [f"a[base + {i} + {j} * sj]" if j else f"a[base + {i}]"
+                         for i, j in pattern], n, n_par, scalar)
+    src = [_table_calls(line, "hb") for line in src]
+    src += _wrapper("residual_batch", "RES", "t, yy, ypv, rr, ud",
+                    [*many, f"    r = {vec.format('rr', f'K * {n}')}", member,
+                     "        _residual_tab(t, y, d, p, r, o, q, u, hb)"])
+    src += _wrapper("jacobian_band", "JAC", "t, cj, yy, ypv, rr, J, ud, t1, t2, t3",
+                    [*many, "    ldim, smu = band_ldim(J), band_smu(J)",
+                     f"    a = carray(band_data(J), ldim * K * {n}, dtype=numpy.float64)", member,
+                     ("        _jacobian_tab(t, cj, y, d, p, a, o * ldim + smu, "
+                      "numpy.int64(ldim - 1), o, q, u, hb)")])
     return src
 
 

@@ -16,8 +16,9 @@ its Python route's arithmetic (the linear part as a CSR product, whose arrays tr
 user data) and IDA gets the same linear solver as there: the dense one, or from 400 unknowns
 SuperLU_MT on the Jacobian's compressed columns. A small model's run-time tables are
 interpolated in the kernels on their points, which travel in the user data too. Models without
-kernels (run-time tables at 100 unknowns or more), batches of models with tables and large
-batches stay with scikit-sundae. A switching model (events, relations held between
+kernels (run-time tables at 100 unknowns or more) and large batches stay with scikit-sundae;
+a batch of a model reading tables has stacked kernels that read the tables' points after the
+members' parameters. A switching model (events, relations held between
 roots: ``solve/events.py``) of fewer than 100 unknowns has its guards as a compiled root
 function too (a table's rows are stops there as well), which IDA watches as scikit-sundae has
 it watch the Python guards (every root terminal, falling through zero): the run stops at the
@@ -316,8 +317,10 @@ def ida_for(opts: dict) -> DirectIDA | None:
         data = None
         if kind is not None and members is None and hasattr(module, "LINEAR"):
             data = _large_data(module, model, opts["userdata"])
-        elif kind is not None and members is None and hasattr(module, "TABLES"):
-            data = _table_data(model, opts["userdata"])
+        elif kind is not None and hasattr(module, "TABLES"):
+            data = (_table_data(model, opts["userdata"]) if members is None else
+                    _with_tables([float(len(members))] + [v for q in members for v in q],
+                                 model.table_points()))
         for name in _used(kind, opts) if kind is not None else ():
             cfunc(module, name)  # compiled here, where a failure means the Python route
     except Exception as exc:  # noqa: BLE001 - numba and the libraries fail in many ways
@@ -405,17 +408,23 @@ def _table_data(model, p) -> np.ndarray:
     # may read different tables (the entry holds the model, so its id is not reused)
     key = (id(model), tuple(float(v) for v in p))
     if _TABLE_DATA.get("key") != key or _TABLE_DATA.get("model") is not model:
-        tables = model.table_points()
-        head = np.asarray(key[1] or (0.0,), dtype=float)
-        start = head.size + 1 + 2 * len(tables)
-        index, pieces, at = [], [], start
-        for x, y, slopes in tables:
-            index += [at, len(x)]
-            pieces += [np.asarray(v, dtype=float) for v in (x, y, slopes)]
-            at += 3 * len(x)
-        _TABLE_DATA.update(key=key, model=model, data=np.concatenate(
-            [head, np.array([at, *index], dtype=float), *pieces]))
+        _TABLE_DATA.update(key=key, model=model,
+                           data=_with_tables(list(key[1] or (0.0,)), model.table_points()))
     return _TABLE_DATA["data"]
+
+
+def _with_tables(head: list[float], tables) -> np.ndarray:
+    """``head`` (the parameters: one model's, or K and each member's), the data's length,
+    each table's start and number of points, then per table its x, its y and its slopes
+    (one fewer than its points: the next table starts that much earlier than 3 x points)."""
+    start = len(head) + 1 + 2 * len(tables)
+    index, pieces, at = [], [], start
+    for x, y, slopes in tables:
+        index += [at, len(x)]
+        pieces += [np.asarray(v, dtype=float) for v in (x, y, slopes)]
+        at += len(x) + len(y) + len(slopes)
+    return np.concatenate([np.asarray(head, dtype=float), np.array([at, *index], dtype=float),
+                           *pieces])
 
 
 #: the last model's table data, by model and parameters (one run asks per segment: built once)
