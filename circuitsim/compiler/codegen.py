@@ -411,16 +411,9 @@ def _shared_kernels(F: list, jac_exprs: list, pattern: list, n: int, n_par: int,
     vec = "carray(data_of({}), {}, dtype=numpy.float64)"
     one = [f"    y, d = {vec.format('yy', n)}, {vec.format('ypv', n)}",
            f"    p = carray(ud, {max(n_par, 1)}, dtype=numpy.float64)"]
-    many = ["    K = int(carray(ud, 1, dtype=numpy.float64)[0])",
-            f"    y, d = {vec.format('yy', f'K * {n}')}, {vec.format('ypv', f'K * {n}')}",
-            f"    p = carray(ud, 1 + K * {n_par}, dtype=numpy.float64)"]
-    member = f"    for k in range(K):\n        o, q = k * {n}, 1 + k * {n_par}"
-    src = _member_body("_residual_at", "t, y, d, p, r, o, q", F,
-                       [f"r[o + {i}]" for i in range(n)], n, n_par, scalar)
-    src += _member_body("_jacobian_at", "t, cj, y, d, p, a, base, sj, o, q", jac_exprs,
-                        [f"a[base + {i} + {j} * sj]" if j else f"a[base + {i}]"
-                         for i, j in pattern], n, n_par, scalar)
     zero = "numpy.int64(0)"  # one type for the bodies' offsets, single and batched alike
+    src = _member_bodies("_residual_at", "_jacobian_at", "", F, jac_exprs, pattern, n, n_par,
+                         scalar)
     src += _wrapper("residual", "RES", "t, yy, ypv, rr, ud",
                     [*one, f"    r = {vec.format('rr', n)}",
                      f"    _residual_at(t, y, d, p, r, {zero}, {zero})"])
@@ -428,15 +421,7 @@ def _shared_kernels(F: list, jac_exprs: list, pattern: list, n: int, n_par: int,
                     [*one, f"    a = {vec.format('J', n * n)}",
                      (f"    _jacobian_at(t, cj, y, d, p, a, {zero}, numpy.int64({n}), {zero}, "
                      f"{zero})")])
-    src += _wrapper("residual_batch", "RES", "t, yy, ypv, rr, ud",
-                    [*many, f"    r = {vec.format('rr', f'K * {n}')}", member,
-                     "        _residual_at(t, y, d, p, r, o, q)"])
-    src += _wrapper("jacobian_band", "JAC", "t, cj, yy, ypv, rr, J, ud, t1, t2, t3",
-                    [*many, "    ldim, smu = band_ldim(J), band_smu(J)",
-                     f"    a = carray(band_data(J), ldim * K * {n}, dtype=numpy.float64)", member,
-                     ("        _jacobian_at(t, cj, y, d, p, a, o * ldim + smu, "
-                     "numpy.int64(ldim - 1), o, q)")])
-    return src
+    return src + _stacked_wrappers("_residual_at", "_jacobian_at", "", [], n, n_par)
 
 
 def _batch_with_tables(F: list, jac_exprs: list, pattern: list, n: int, n_par: int, scalar
@@ -446,29 +431,44 @@ def _batch_with_tables(F: list, jac_exprs: list, pattern: list, n: int, n_par: i
     each member's parameters, then the tables as a single model's kernels read them after
     its parameters (``hb - 1``: the data's length; from ``hb``, each table's start and
     number of points; then the points), so that ``tab`` reads them alike."""
+    tables = [f"    hb = 2 + K * {n_par}",
+              ("    u = carray(ud, int(carray(ud, hb, dtype=numpy.float64)[hb - 1]), "
+               "dtype=numpy.float64)")]
+    src = _member_bodies("_residual_tab", "_jacobian_tab", ", u, hb", F, jac_exprs, pattern, n,
+                         n_par, scalar)
+    src = [_table_calls(line, "hb") for line in src]
+    return src + _stacked_wrappers("_residual_tab", "_jacobian_tab", ", u, hb", tables, n,
+                                   n_par)
+
+
+def _member_bodies(res: str, jac: str, extra: str, F: list, jac_exprs: list, pattern: list,
+                   n: int, n_par: int, scalar) -> list[str]:
+    """The residual and Jacobian bodies of one member (arguments ``extra`` after the
+    offsets), the Jacobian entry (i, j) at ``a[base + i + j sj]``."""
+    src = _member_body(res, f"t, y, d, p, r, o, q{extra}", F,
+                       [f"r[o + {i}]" for i in range(n)], n, n_par, scalar)
+    return src + _member_body(jac, f"t, cj, y, d, p, a, base, sj, o, q{extra}", jac_exprs,
+                              [f"a[base + {i} + {j} * sj]" if j else f"a[base + {i}]"
+                               for i, j in pattern], n, n_par, scalar)
+
+
+def _stacked_wrappers(res: str, jac: str, extra: str, pre: list[str], n: int, n_par: int
+                      ) -> list[str]:
+    """``residual_batch`` and ``jacobian_band``: K members (``ud`` = K, then each member's
+    parameters; ``pre`` reads what follows them) calling the member bodies in turn."""
     vec = "carray(data_of({}), {}, dtype=numpy.float64)"
     many = ["    K = int(carray(ud, 1, dtype=numpy.float64)[0])",
             f"    y, d = {vec.format('yy', f'K * {n}')}, {vec.format('ypv', f'K * {n}')}",
-            f"    p = carray(ud, 1 + K * {n_par}, dtype=numpy.float64)",
-            f"    hb = 2 + K * {n_par}",
-            ("    u = carray(ud, int(carray(ud, hb, dtype=numpy.float64)[hb - 1]), "
-             "dtype=numpy.float64)")]
+            f"    p = carray(ud, 1 + K * {n_par}, dtype=numpy.float64)", *pre]
     member = f"    for k in range(K):\n        o, q = k * {n}, 1 + k * {n_par}"
-    src = _member_body("_residual_tab", "t, y, d, p, r, o, q, u, hb", F,
-                       [f"r[o + {i}]" for i in range(n)], n, n_par, scalar)
-    src += _member_body("_jacobian_tab", "t, cj, y, d, p, a, base, sj, o, q, u, hb", jac_exprs,
-                        [f"a[base + {i} + {j} * sj]" if j else f"a[base + {i}]"
-                         for i, j in pattern], n, n_par, scalar)
-    src = [_table_calls(line, "hb") for line in src]
-    src += _wrapper("residual_batch", "RES", "t, yy, ypv, rr, ud",
-                    [*many, f"    r = {vec.format('rr', f'K * {n}')}", member,
-                     "        _residual_tab(t, y, d, p, r, o, q, u, hb)"])
-    src += _wrapper("jacobian_band", "JAC", "t, cj, yy, ypv, rr, J, ud, t1, t2, t3",
-                    [*many, "    ldim, smu = band_ldim(J), band_smu(J)",
-                     f"    a = carray(band_data(J), ldim * K * {n}, dtype=numpy.float64)", member,
-                     ("        _jacobian_tab(t, cj, y, d, p, a, o * ldim + smu, "
-                      "numpy.int64(ldim - 1), o, q, u, hb)")])
-    return src
+    src = _wrapper("residual_batch", "RES", "t, yy, ypv, rr, ud",
+                   [*many, f"    r = {vec.format('rr', f'K * {n}')}", member,
+                    f"        {res}(t, y, d, p, r, o, q{extra})"])
+    return src + _wrapper("jacobian_band", "JAC", "t, cj, yy, ypv, rr, J, ud, t1, t2, t3",
+                          [*many, "    ldim, smu = band_ldim(J), band_smu(J)",
+                           f"    a = carray(band_data(J), ldim * K * {n}, dtype=numpy.float64)",
+                           member, (f"        {jac}(t, cj, y, d, p, a, o * ldim + smu, "
+                                    f"numpy.int64(ldim - 1), o, q{extra})")])
 
 
 def _guard_parts(dae, ren: dict) -> tuple[list, list, list[int]] | None:
