@@ -186,3 +186,35 @@ def test_a_relation_that_never_switches_changes_nothing(compile_text) -> None:
     err_held = np.max(np.abs(held["vc"] - exact))
     err_plain = np.max(np.abs(plain["vc"] - exact))
     assert err_held < 5e-7 and err_plain < 5e-7  # 8e-8 and 1.2e-7 V measured
+
+
+def test_relations_are_numbered_alike_in_every_process(tmp_path) -> None:
+    """A clamp's two relations get their modes in sympy's canonical order, not a set's: two
+    processes with different hash seeds generate the same code (they numbered EMPS's clamp
+    modes in two orders before)."""
+    import json
+    import os
+    import subprocess
+    import sys
+
+    (tmp_path / "net.yaml").write_text(
+        "parameters: {kp: 40, lim: 10}\n"
+        "components:\n"
+        "  - {name: V1, type: V, p: a, n: gnd, V: {sine: {amplitude: 20, freq: 50}}}\n"
+        "  - {name: R1, type: R, p: a, n: gnd, R: 1k}\n"
+        "  - {name: J1, type: inertia, shaft: s, J: 0.01}\n"
+        "  - {name: B1, type: damper, shaft: s, b: 0.1}\n"
+        "  - {name: D1, type: btorque, shaft: s,\n"
+        "     expr: \"max(-lim, min(lim, kp*(a.v - s.w))) + 0.1*abs(s.w)\"}\n"
+        "probes: {w: s.w}\n")
+    code = ("import json, sys, circuitsim as cs\n"
+            "m = cs.compile(cs.load(sys.argv[1]))\n"
+            "print(json.dumps([m.meta['crossings'], m.meta['kernels'], m.meta['params']]))\n")
+    outs = []
+    for seed in ("1", "2", "3"):
+        env = {**os.environ, "PYTHONHASHSEED": seed, "CIRCUITSIM_CACHE": str(tmp_path / seed)}
+        run = subprocess.run([sys.executable, "-c", code, str(tmp_path / "net.yaml")],
+                             capture_output=True, text=True, env=env, timeout=120, check=True)
+        outs.append(json.loads(run.stdout))
+    assert len(outs[0][0]) == 3  # the clamp's two relations and the abs
+    assert outs[0] == outs[1] == outs[2]

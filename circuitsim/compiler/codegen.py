@@ -23,7 +23,8 @@ from typing import Any
 
 from circuitsim.solve.kernel_lib import BAND_ABS, BAND_REL, KERNEL_LIB
 
-CODEGEN_VERSION = "26"  # 24-25: the root function (25: with tables); 26: batches with tables
+CODEGEN_VERSION = "27"  # 24-25: the root function (25: with tables); 26: batches with tables;
+# 27: relations' modes numbered in canonical order
 
 # [unknowns] from here on the residual's linear part is a sparse matrix product (measured on
 # RLC ladders: 5x slower than the scalar code at 16 unknowns, 2x at 50, equal at 100) ...

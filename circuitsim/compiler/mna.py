@@ -382,9 +382,11 @@ def hold_relations(e: Any, asm: _Assembly, prefix: str, owner: str) -> Any:
         return e
     live = asm.der.unknowns | asm.der.derivs | {asm.t}
     held: dict[sp.Basic, sp.Basic] = {}
-    for pw in e.atoms(sp.Piecewise):
+    # in sympy's canonical order, not a set's: the modes are numbered alike in every process
+    # (by hash order, two processes generated two orders of EMPS's clamp modes)
+    for pw in sorted(e.atoms(sp.Piecewise), key=sp.default_sort_key):
         for _, cond in pw.args:
-            for rel in cond.atoms(sp.Lt, sp.Le, sp.Gt, sp.Ge):
+            for rel in sorted(cond.atoms(sp.Lt, sp.Le, sp.Gt, sp.Ge), key=sp.default_sort_key):
                 if rel in held or not rel.free_symbols & live:
                     continue
                 mode = asm.psym(f"{prefix}.mode{len(held)}")
