@@ -13,6 +13,17 @@ from scipy.integrate import solve_ivp
 from ngspice import require_ngspice, run_ngspice
 
 DECKS = Path(__file__).resolve().parent / "decks"
+#: an ideal (pwl, event-switched) diode charging 100 uF || 100 ohm from a 10 V 50 Hz sine
+RECTIFIER = """
+        components:
+          - {name: V1, type: V, p: a, n: gnd, V: {sine: {amplitude: 10, freq: 50}}}
+          - {name: D1, type: D, p: a, n: b, model: ideal, Vf: 0.7, Ron: 0.1, Goff: 1e-9,
+             Vh: 1e-9}
+          - {name: C1, type: C, p: b, n: gnd, C: 100 uF}
+          - {name: R1, type: R, p: b, n: gnd, R: 100}
+        probes: {vc: b.v, on: D1.on}
+        analysis: {stop: 60 ms, step: 50 us, rtol: 1e-10, atol: 1e-12}
+"""
 
 
 def _edges(t: np.ndarray, state: np.ndarray) -> np.ndarray:
@@ -67,17 +78,7 @@ def test_voltage_switch_ideal_relaxation_oscillator(compile_text) -> None:
     """A capacitor charged through 1 kohm from 5 V is shorted (10 ohm) by an ideal switch
     controlled by its own voltage with hysteresis: closes above Vt + Vh = 3.5 V, opens below
     1.5 V. Every switching instant matches the closed form of the exponential pieces."""
-    model = compile_text("""
-        components:
-          - {name: V1, type: V, p: in, n: gnd, V: 5 V}
-          - {name: R1, type: R, p: in, n: c, R: 1 kohm}
-          - {name: C1, type: C, p: c, n: gnd, C: 1 uF}
-          - {name: S1, type: S, p: c, n: gnd, cp: c, cn: gnd, model: ideal, Vt: 2.5 V,
-             Vh: 1 V, Ron: 10 ohm, Roff: 1 Gohm}
-        probes: {v: c.v, on: S1.on}
-        analysis: {stop: 8 ms, step: 1 us, rtol: 1e-10, atol: 1e-12}
-    """)
-    res = model.simulate()
+    res = compile_text(RELAXATION).simulate(stop=8e-3, step=1e-6)
     assert res.success, res.message
     first, closed, opened = _relaxation_period()
     n = 2 * int((8e-3 - first) / (closed + opened)) + 1
@@ -175,16 +176,7 @@ def test_ideal_diode_rectifier_against_scipy(compile_text) -> None:
     """An ideal (pwl, event-switched) diode charging 100 uF || 100 ohm from a 10 V 50 Hz
     sine: the capacitor voltage over three periods agrees with a hand-written scipy model
     that switches the same pwl diode by its own event location."""
-    model = compile_text("""
-        components:
-          - {name: V1, type: V, p: a, n: gnd, V: {sine: {amplitude: 10, freq: 50}}}
-          - {name: D1, type: D, p: a, n: b, model: ideal, Vf: 0.7, Ron: 0.1, Goff: 1e-9,
-             Vh: 1e-9}
-          - {name: C1, type: C, p: b, n: gnd, C: 100 uF}
-          - {name: R1, type: R, p: b, n: gnd, R: 100}
-        probes: {vc: b.v, on: D1.on}
-        analysis: {stop: 60 ms, step: 50 us, rtol: 1e-10, atol: 1e-12}
-    """)
+    model = compile_text(RECTIFIER)
     res = model.simulate()
     assert res.success, res.message
     ref = _rectifier_reference(res.t)

@@ -24,6 +24,15 @@ DIODE = """
 IF_LAW = "if(in.v - out.v > 0, (in.v - out.v)/Ron, (in.v - out.v)*Goff)"
 MAX_LAW = "max(in.v - out.v, 0)/Ron + min(in.v - out.v, 0)*Goff"
 
+#: a rotor coasting down under -Tc sign(w) - b w from 10 rad/s (J = 1, Tc = 2, b = 0.5)
+COAST_DOWN = """
+        parameters: {Tc: 2 N*m, b: 0.5 N*m*s/rad}
+        components:
+          - {name: J1, type: inertia, shaft: s, J: 1, w0: 10}
+          - {name: F1, type: btorque, shaft: s, expr: "-Tc*sign(s.w) - b*s.w"}
+        probes: {w: s.w}
+        analysis: {stop: 4, step: 1 ms, rtol: 1e-10, atol: 1e-12}
+"""
 
 def _diode_reference(t_out: np.ndarray) -> tuple[np.ndarray, list[float]]:
     """v_C at t_out and the switching instants: one mode at a time (solve_ivp, DOP853), each
@@ -86,14 +95,7 @@ def test_coulomb_and_viscous_coast_down_stops_at_the_closed_form(compile_text) -
     has no consistent side (the rotor would reverse at once), so the run stops there with
     the chatter named, instead of integrating a wrong answer."""
     J, w0, tc, b = 1.0, 10.0, 2.0, 0.5
-    model = compile_text("""
-        parameters: {Tc: 2 N*m, b: 0.5 N*m*s/rad}
-        components:
-          - {name: J1, type: inertia, shaft: s, J: 1, w0: 10}
-          - {name: F1, type: btorque, shaft: s, expr: "-Tc*sign(s.w) - b*s.w"}
-        probes: {w: s.w}
-        analysis: {stop: 4, step: 1 ms, rtol: 1e-10, atol: 1e-12}
-    """)
+    model = compile_text(COAST_DOWN)
     res = model.simulate()
     t_s = J / b * np.log(1 + b * w0 / tc)
     assert abs(res.t_events[0] - t_s) < 3e-9

@@ -260,7 +260,7 @@ def test_kernel_powers_of_a_deep_sum():
     assert rewritten["r0"] == plain["r0"]
 
 
-def _both_watched(model, monkeypatch):
+def _both_watched(model, monkeypatch, **kw):
     """``_both`` for a switching model, checking that the second run's segments went through
     the compiled route (its root function) and the first's did not."""
     from circuitsim.solve import direct
@@ -270,7 +270,7 @@ def _both_watched(model, monkeypatch):
     monkeypatch.setattr(direct.DirectIDA, "solve",
                         lambda self, *a: runs.append(os.environ["CIRCUITSIM_KERNELS"])
                         or solve(self, *a))
-    python, kernels = _both(model, monkeypatch)
+    python, kernels = _both(model, monkeypatch, **kw)
     assert runs and set(runs) == {"numba"}
     return python, kernels
 
@@ -311,29 +311,12 @@ def test_component_events_are_watched_by_the_compiled_root_function(compile_text
     """An ideal diode (event-switched, with its hysteresis) and a switch that a capacitor's
     own voltage opens and closes: the guards, the jumps and the restarts give the Python
     route's steps and instants, to the bit."""
-    diode = compile_text("""
-        components:
-          - {name: V1, type: V, p: a, n: gnd, V: {sine: {amplitude: 10, freq: 50}}}
-          - {name: D1, type: D, p: a, n: b, model: ideal, Vf: 0.7, Ron: 0.1, Goff: 1e-9,
-             Vh: 1e-9}
-          - {name: C1, type: C, p: b, n: gnd, C: 100 uF}
-          - {name: R1, type: R, p: b, n: gnd, R: 100}
-        probes: {vc: b.v, on: D1.on}
-        analysis: {stop: 60 ms, step: 50 us, rtol: 1e-10, atol: 1e-12}
-    """)
-    relax = compile_text("""
-        components:
-          - {name: V1, type: V, p: in, n: gnd, V: 5 V}
-          - {name: R1, type: R, p: in, n: c, R: 1 kohm}
-          - {name: C1, type: C, p: c, n: gnd, C: 1 uF}
-          - {name: S1, type: S, p: c, n: gnd, cp: c, cn: gnd, model: ideal, Vt: 2.5 V,
-             Vh: 1 V, Ron: 10 ohm, Roff: 1 Gohm}
-        probes: {v: c.v, on: S1.on}
-        analysis: {stop: 8 ms, step: 1 us, rtol: 1e-10, atol: 1e-12}
-    """)
-    for model, switchings in ((diode, 6), (relax, 9)):
+    from test_breadth_events import RECTIFIER, RELAXATION
+
+    diode, relax = compile_text(RECTIFIER), compile_text(RELAXATION)
+    for model, switchings, kw in ((diode, 6, {}), (relax, 9, {"stop": 8e-3, "step": 1e-6})):
         assert "def roots" in model.meta["kernels"]
-        python, kernels = _both_watched(model, monkeypatch)
+        python, kernels = _both_watched(model, monkeypatch, **kw)
         assert python.t_events.size >= switchings
         _same_events(python, kernels)
 
@@ -341,14 +324,9 @@ def test_component_events_are_watched_by_the_compiled_root_function(compile_text
 def test_a_chattering_relation_stops_alike_on_both_routes(compile_text, monkeypatch):
     """sign(w) friction coasting to rest has no consistent side there: both routes stop at
     the same root with the chatter named."""
-    model = compile_text("""
-        parameters: {Tc: 2 N*m, b: 0.5 N*m*s/rad}
-        components:
-          - {name: J1, type: inertia, shaft: s, J: 1, w0: 10}
-          - {name: F1, type: btorque, shaft: s, expr: "-Tc*sign(s.w) - b*s.w"}
-        probes: {w: s.w}
-        analysis: {stop: 4, step: 1 ms, rtol: 1e-10, atol: 1e-12}
-    """)
+    from test_breadth_relations import COAST_DOWN
+
+    model = compile_text(COAST_DOWN)
     python, kernels = _both_watched(model, monkeypatch)
     for res in (python, kernels):
         assert not res.success and "chatter" in res.message

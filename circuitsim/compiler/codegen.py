@@ -374,9 +374,8 @@ def _kernels(F: list, jac_exprs: list, pattern: list, n: int, n_par: int, scalar
     Jacobian (column-major) of one member, and of K members stacked (``ud`` = K, then each
     member's parameters) with the Jacobian in SUNDIALS' band storage, as ``solve/batch.py``
     integrates them; with ``guards`` (a switching model's, ``_guard_parts``) also IDA's root
-    function ``roots``. A model reading run-time tables gets the residual and the Jacobian
-    only, the tables' points in the user data after the parameters (``TABLES``;
-    solve/direct.py)."""
+    function ``roots``. A model reading run-time tables gets the same, the tables' points in
+    the user data after the parameters (``TABLES``; ``_batch_with_tables``; solve/direct.py)."""
     src = [_KERNEL_HEADER.rstrip()]
     shared = _shared_kernels(F, jac_exprs, pattern, n, n_par, scalar)
     vec = "carray(data_of({}), {}, dtype=numpy.float64)"

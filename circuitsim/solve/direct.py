@@ -37,10 +37,8 @@ from typing import Any
 
 import numpy as np
 
+from circuitsim.solve.kernel_lib import ROOT_RETURN
 from circuitsim.solve.route import kernels_requested
-
-#: IDA's return flag for a root (SUNDIALS IDA_ROOT_RETURN)
-ROOT_RETURN = 2
 
 
 def wanted() -> bool:

@@ -26,7 +26,7 @@ import numpy as np
 
 from circuitsim.errors import SolverError
 from circuitsim.solve.init import consistent_initial
-from circuitsim.solve.kernel_lib import BAND_ABS, BAND_REL
+from circuitsim.solve.kernel_lib import BAND_ABS, BAND_REL, ROOT_RETURN
 
 #: Rounds of event iteration at one instant before the switching is declared chattering
 #: (a half-bridge commutation takes three: gate off, diode on, dead time over).
@@ -34,8 +34,6 @@ MAX_ROUNDS = 20
 #: This many switchings within ZENO_SPAN * stop of each other is chatter, not switching.
 ZENO_COUNT = 64
 ZENO_SPAN = 1e-10
-#: IDA's return flag for a root (SUNDIALS IDA_ROOT_RETURN).
-ROOT_RETURN = 2
 #: Residual tolerance of the restart, relative to 1 + max |y|. consistent_initial's default
 #: (1e-10) is loose when some state is large: at 600 rad/s it left a current 2.5e-8 A off,
 #: and IDA's first step then failed its error test at atol 1e-9 down to h = 1e-17.

@@ -153,6 +153,9 @@ JAC = types.int32(types.float64, types.float64, types.voidptr, types.voidptr, ty
                   types.voidptr, types.voidptr, types.voidptr, types.voidptr, types.voidptr)
 '''
 
+#: IDA's return flag for a root (SUNDIALS IDA_ROOT_RETURN; the output loop above stops at it)
+ROOT_RETURN = 2
+
 #: Hysteresis of a held relation (a relation in an expression: abs, sign, min, max, if),
 #: relative to |lhs| + |rhs|, and an absolute floor: at its root IDA returns a point just past
 #: the crossing, so the new mode's guard is positive by that much; the band keeps the rounding

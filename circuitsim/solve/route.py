@@ -27,8 +27,8 @@ def serial_blas(fn: _F) -> _F:
     compiling kernels ahead (``solve/ahead.py``), a sweep's other process, or anything else
     on the machine. OpenBLAS's threads then wait for a core at every call: the slow-feature
     windows of a 0.4 s, 25 kHz record took 0.82 s instead of 0.019 s, and a whole diagnosis
-    25.4 s instead of 6.6 s, with one other process busy on this 2-core machine
-    (``benchmarks/bench_diagnose.py``). At these sizes a second thread gains nothing."""
+    25.4 s instead of 6.6 s (the benchmark's k10, ``benchmarks/diagnosis/``), with one other
+    process busy on this 2-core machine. At these sizes a second thread gains nothing."""
     @functools.wraps(fn)
     def wrapped(*args, **kwargs):
         from threadpoolctl import threadpool_limits
