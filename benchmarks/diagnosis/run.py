@@ -1,14 +1,13 @@
 """Run circuitsim's diagnosis on the benchmark records and score it against truth.json.
 
-    python benchmarks/diagnosis/run.py --split tune          # or heldout, fresh..fresh7, all
+    python benchmarks/diagnosis/run.py --split tune          # or heldout, fresh..fresh9, all
     python benchmarks/diagnosis/run.py --only c01,n02 --timeout 600
     python benchmarks/diagnosis/run.py --split all --score-only   # re-print from results/
 
 Each record is diagnosed in a fresh child process (``--child ID``) with a wall-clock timeout;
 its result goes to results/<id>.json (git-ignored) as soon as it is done, so an interrupted
 run resumes where it stopped (``--rerun`` recomputes). A missing record CSV is generated
-first (make_records.py --only ID; make_records_d.py for motor D, make_records_e.py for E, make_records_f.py for F,
-make_records_g.py for G). ``--circuitsim DIR`` puts a circuitsim checkout first on the
+first (make_records.py --only ID for motors A-C; make_records_x.py for every later motor X). ``--circuitsim DIR`` puts a circuitsim checkout first on the
 child's path (default: whatever the interpreter imports).
 
 The API is looked up as ``circuitsim.diagnose`` (a callable exported at the top level), then
@@ -45,6 +44,9 @@ ROOT = HERE.parents[1]
 RESULTS = HERE / "results"
 TRUTH = HERE / "truth.json"
 CLASSES = ("null", "catalog", "two", "outside")
+#: the record sets, in the order they were made (each fresh set is a blind set of a new motor)
+SPLITS = ("tune", "heldout", "fresh", "fresh2", "fresh3", "fresh4", "fresh5", "fresh6",
+          "fresh7", "fresh8", "fresh9")
 VERDICTS = ("right", "tie", "nothing", "nothing+structure", "partial", "wrong", "failed")
 #: [sigma] a marginal truth this close to another catalog effect's imprint (truth.json's
 #: separation_sigma, computed on the scipy models) cannot be told from it by any test
@@ -391,9 +393,10 @@ def report(entries: list[dict], title: str) -> tuple[int, int]:
 def run_one(entry: dict, timeout: float, circuitsim_dir: str | None, niceness: int) -> None:
     csv = ROOT / entry["csv"]
     if not csv.exists():
-        maker = {"D": "make_records_d.py", "E": "make_records_e.py",
-                 "F": "make_records_f.py", "G": "make_records_g.py"}.get(entry["motor"],
-                                                                         "make_records.py")
+        # motors A-C come from make_records.py, every later motor X from make_records_x.py
+        maker = f"make_records_{entry['motor'].lower()}.py"
+        if not (HERE / maker).exists():
+            maker = "make_records.py"
         subprocess.run([sys.executable, str(HERE / maker), "--only", entry["id"]],
                        check=True, stdout=subprocess.DEVNULL)
     env = dict(os.environ)
@@ -404,6 +407,8 @@ def run_one(entry: dict, timeout: float, circuitsim_dir: str | None, niceness: i
     if niceness:
         cmd = ["nice", "-n", str(niceness), *cmd]
     t0 = time.perf_counter()
+    # a result left from an earlier run must not stand in for this one if the child dies
+    (RESULTS / f"{entry['id']}.json").unlink(missing_ok=True)
     proc = subprocess.Popen(cmd, env=env, start_new_session=True)
     try:
         proc.wait(timeout=timeout)
@@ -423,10 +428,10 @@ def run_one(entry: dict, timeout: float, circuitsim_dir: str | None, niceness: i
 
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--split", choices=("tune", "heldout", "fresh", "fresh2", "fresh3",
-                                        "fresh4", "fresh5", "fresh6", "fresh7", "all"),
-                    default="tune")
+    ap.add_argument("--split", choices=(*SPLITS, "all"), default="tune")
     ap.add_argument("--only", default="", help="record ids, comma-separated")
+    ap.add_argument("--skip", default="", help="splits to leave out, comma-separated (a "
+                    "blind set kept for a later run)")
     ap.add_argument("--timeout", type=float, default=1200.0, help="per record [s]")
     ap.add_argument("--rerun", action="store_true", help="ignore stored results")
     ap.add_argument("--score-only", action="store_true", help="print from results/ only")
@@ -441,7 +446,9 @@ def main() -> int:
     if only:
         sel = [e for e in truth if e["id"] in only]
     else:
-        sel = [e for e in truth if args.split == "all" or e["split"] == args.split]
+        skip = {x.strip() for x in args.skip.split(",") if x.strip()}
+        sel = [e for e in truth if (args.split == "all" or e["split"] == args.split)
+               and e["split"] not in skip]
     if not args.score_only:
         for e in sel:
             path = RESULTS / f"{e['id']}.json"
@@ -450,8 +457,7 @@ def main() -> int:
             print(f"diagnosing {e['id']} ...", flush=True)
             run_one(e, args.timeout, args.circuitsim, args.nice)
     totals = [0, 0]
-    for split in ("tune", "heldout", "fresh", "fresh2", "fresh3", "fresh4", "fresh5",
-                  "fresh6", "fresh7"):
+    for split in SPLITS:
         part = [e for e in sel if e["split"] == split]
         if part:
             r, n = report(part, split)

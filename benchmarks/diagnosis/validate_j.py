@@ -1,0 +1,187 @@
+"""Cross-check of motor J: the noise-free null output of simulators_j.py against circuitsim's
+simulation of the declared netlists (motor_j.yaml, fast; motor_j_slow.yaml, slow); each
+catalog and two-effect record against the declared netlist carrying the catalog's own patch
+(circuitsim.loop.effects.candidates) at the truth's expected values; and the outside records
+whose law circuitsim's components can state (the transmission error and the cable harness
+and the dragging brake as behavioural torques, the demagnetisation as a peak detector on a
+capacitor driving a behavioural voltage and torque). The current sensor's hysteresis (a play
+operator on the samples) has no component and is not compared.
+
+    PYTHONPATH=<circuitsim checkout> python benchmarks/diagnosis/validate_j.py
+
+Prints, per probe, the largest difference relative to the signal's range on the record grid,
+and the effect's own size on that scale. Target 1e-5 of the range; exit status 1 above it.
+Nothing here runs a diagnosis.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import sys
+import tempfile
+import time
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))
+
+import simulators_j as sj
+from make_records_j import record_specs, scale_marginal
+
+NETLISTS = {"fast": HERE / "netlists" / "motor_j.yaml",
+            "slow": HERE / "netlists" / "motor_j_slow.yaml"}
+UNITS = {"current": "A", "speed": "rad/s", "load_speed": "rad/s"}
+TARGET = 1e-5
+#: the truth's physical names -> the catalog's parameter suffixes
+SUFFIX = {"gain": "g", "offset": "o", "delay": "tau"}
+
+
+def patched(net, regime: str, effects: list[dict]):
+    """The declared netlist's raw form with each truth effect's catalog patch applied, and
+    the patch parameters' values."""
+    from circuitsim.loop.effects import candidates
+
+    orders: dict[str, list[int]] = {}
+    for e in effects:
+        if "order" in e:
+            shaft = "rotor" if e["effect"] == "emf-harmonic" else e["target"]
+            orders.setdefault(shaft, []).append(int(e["order"]))
+    pool = candidates(net, orders=orders, probes={p: UNITS[p] for p in sj.PROBES[regime]},
+                      duration=sj.REGIMES[regime][1])
+    raw, values = net.raw, {}
+    for e in effects:
+        keys = [SUFFIX.get(k, k) for k in e["expected"]]
+        cand = next(c for c in pool if c.effect == e["effect"] and c.target == e["target"]
+                    and c.fixed.get("order", e.get("order")) == e.get("order")
+                    and all(any(n.endswith("_" + k) for n in c.free) for k in keys))
+        raw = cand.apply(raw)
+        for k, v in e["expected"].items():
+            name = next(n for n in cand.free if n.endswith("_" + SUFFIX.get(k, k)))
+            values[name] = float(v) - 1.0 if k == "gain" else float(v)
+    return raw, values
+
+
+# ---------------------------------------------------------------------- outside laws
+
+def _add(raw, entry):
+    from circuitsim.loop.effects import _add as add
+
+    add(raw, entry)
+
+
+def kinerr(raw, fx):
+    """The flexspline K as behavioural torques: its input angle leads hd by
+    eps sin(2 th + phase); the arm receives T_K, the cup -T_K (reaching the rotor as -T_K/N
+    through the gear) and the rotor -T_K 2 eps cos(2 th + phase). The record starts at rest
+    with the flexspline relaxed: the arm's angle starts at eps sin(phase)."""
+    eps, ph = fx["kinerr"]
+    p = sj.MOTOR_J
+    raw.comps = [c for c in raw.comps if c[0].get("name") != "K"]
+    # the record starts at rest with the flexspline relaxed: the arm at the gear's error
+    raw.component_entry("Ja")["phi0"] = eps * math.sin(ph)
+    cosx = f"cos(2*rotor.phi + {ph!r})"
+    tk = (f"({p['c']!r}[N*m/rad]*(hd.phi + {eps!r}[rad]*sin(2*rotor.phi + {ph!r}) - arm.phi)"
+          f" + {p['d']!r}[N*m*s/rad]*(hd.w + 2*{eps!r}*rotor.w*{cosx} - arm.w))")
+    _add(raw, {"name": "TK_arm", "type": "btorque", "shaft": "arm", "expr": tk})
+    _add(raw, {"name": "TK_hd", "type": "btorque", "shaft": "hd", "expr": f"-{tk}"})
+    _add(raw, {"name": "TK_rotor", "type": "btorque", "shaft": "rotor",
+               "expr": f"-{tk}*2*{eps!r}*{cosx}"})
+
+
+def harness(raw, fx):
+    kc, th0 = fx["harness"]
+    _add(raw, {"name": "HARN", "type": "btorque", "shaft": "arm",
+               "expr": f"-{kc!r}[N*m/rad]*(arm.phi - {th0!r}[rad])"})
+
+
+def brake(raw, fx):
+    tb, ph = fx["brake"]
+    _add(raw, {"name": "BRK", "type": "btorque", "shaft": "rotor",
+               "expr": f"-{tb!r}[N*m]*0.5*(1 + cos(rotor.phi + {ph!r}))"
+                       f"*tanh(rotor.w/{sj.W_SIGN!r}[rad/s])"})
+
+
+def demag(raw, fx):
+    """The peak current m as the voltage of a 1 F capacitor charged by G relu(|i| - m); the
+    flux lost, D(m), as a voltage -k D w in series with M and a torque -k D i on the rotor."""
+    from circuitsim.loop.effects import _insert_series
+
+    delta, i1, iw, g = fx["demag"]
+    k = sj.MOTOR_J["k"]
+    _add(raw, {"name": "PKC", "type": "C", "p": "pk", "n": "gnd", "C": 1.0})
+    _add(raw, {"name": "PKI", "type": "BI", "p": "gnd", "n": "pk",
+               "expr": f"{g!r}*0.5*((sqrt(Ra.i^2 + 1e-6) - pk.v) + "
+                       f"sqrt((sqrt(Ra.i^2 + 1e-6) - pk.v)^2 + 1e-6))"})
+    loss = f"{delta!r}*(1 - exp(-(max(pk.v - {i1!r}, 0)/{iw!r})^2))"
+    _insert_series(raw, "M", "DMV", f"-{k!r}*{loss}*rotor.w")
+    _add(raw, {"name": "DMT", "type": "btorque", "shaft": "rotor",
+               "expr": f"-{k!r}[N*m/A]*{loss}*Ra.i"})
+
+
+OUTSIDE_LAWS = {"kinerr": kinerr, "harness": harness, "brake": brake, "demag": demag}
+
+
+# ---------------------------------------------------------------------- comparison
+
+def compare(cs, regime: str, label: str, fx: dict, raw=None, values=None) -> float:
+    from circuitsim.netlist.load import build
+
+    t = sj.grid(regime)
+    fx = dict(fx)
+    p = {**sj.MOTOR_J, **fx.pop("p", {})}
+    ref = sj.simulate(regime, t, fx, p)
+    base = sj.simulate(regime, t) if (fx or p != sj.MOTOR_J) else None
+    net = cs.load(NETLISTS[regime]) if raw is None else build(raw)
+    t0 = time.perf_counter()
+    res = cs.compile(net).simulate(stop=float(t[-1]), t_eval=t, params=values or None,
+                                   rtol=1e-10, atol=1e-12)
+    t_cs = time.perf_counter() - t0
+    worst = 0.0
+    for pr in sj.PROBES[regime]:
+        a, b = np.asarray(ref[pr]), np.asarray(res[pr])
+        rng = float(np.ptp(b))
+        mx = float(np.max(np.abs(a - b)) / rng)
+        worst = max(worst, mx)
+        size = "" if base is None else \
+            f"; effect {np.max(np.abs(a - base[pr])) / rng:.1e} of range"
+        print(f"motor J {regime:4s} {label:48s} {pr:10s}: max |diff|/range {mx:.1e} "
+              f"(range {rng:.4g}{size}; circuitsim {t_cs:.1f} s)", flush=True)
+    return worst
+
+
+def main() -> int:
+    os.environ.setdefault("CIRCUITSIM_CACHE", tempfile.mkdtemp(prefix="diagbench-cache-"))
+    warnings.simplefilter("ignore")
+    import circuitsim as cs
+
+    worst = max(compare(cs, r, "null", {}) for r in ("fast", "slow"))
+    for s in record_specs():
+        regime = s["regime"]
+        if s["marginal"] is not None:
+            scale_marginal(s)
+        if s["class"] in ("catalog", "two"):
+            raw, values = patched(cs.load(NETLISTS[regime]), regime, s["effects"])
+            # the id and class only: the effects stay in truth.json (the set is blind)
+            label = f"{s['id']} {s['class']}, the catalog's patch"
+            worst = max(worst, compare(cs, regime, label, s["fx"], raw, values))
+        elif s["class"] == "outside":
+            law = next((f for k, f in OUTSIDE_LAWS.items() if k in s["fx"]), None)
+            if law is None:
+                print(f"motor J {regime:4s} {s['id']} outside: no component states its law "
+                      "(not compared)")
+                continue
+            raw = cs.load(NETLISTS[regime]).raw.copy()
+            law(raw, s["fx"])
+            worst = max(worst, compare(cs, regime, f"{s['id']} outside, as components",
+                                       s["fx"], raw))
+    print(f"worst max |diff|/range {worst:.2e} -> {'OK' if worst < TARGET else 'ABOVE'} "
+          f"(target {TARGET:g})")
+    return 0 if worst < TARGET else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
