@@ -503,6 +503,55 @@ def test_parameters_that_differ_between_frequency_bands_are_seen_and_constant_on
     _closed_form_and_null(_band_case, 40.0, seed=5)
 
 
+def _law_case(exponent, seed, phi=0.0, size=0.3):
+    """A speed profile w [rad/s] and a loss c w^exponent seen through a static law: the
+    effect's own column is the viscous law w, the bend's columns w |w| / W and w (w/W)^2
+    (law.Law shapes |w| and w^2); the residual is unit noise (AR(1) with ``phi``) plus what
+    the viscous law, fitted, leaves of the loss. Returns the LawTest and the law error."""
+    from types import SimpleNamespace
+
+    from circuitsim.loop.diagnose.law import LawTest, _removed
+    from circuitsim.loop.diagnose.regress import added_with_energy
+
+    rng = np.random.default_rng(seed)
+    n = 6000
+    t = np.arange(n) / n
+    w = 225.0 + 175.0 * np.sin(2 * np.pi * 2 * t)
+    top = float(np.max(np.abs(w)))
+    loss = size * w ** exponent / top ** (exponent - 1.0)
+    error = loss - w * (w @ loss) / (w @ w)
+    noise = lfilter_ar1(rng.normal(size=n), phi)
+    x = {"x": 1.0}
+    own, bend = [{"x": w}], [{"x": w * np.abs(w) / top}, {"x": w * (w / top) ** 2}]
+    residual = {"x": noise + error}
+    dbic, gain, energy = added_with_energy(residual, own, bend, x, ["x"], {"x": loss})
+    setup = SimpleNamespace(probes=("x",), weights=x)
+    removed, bends = _removed(setup, residual, own, bend)
+    return LawTest(dbic, gain, ("|w|", "w^2"), removed, bends, energy), error
+
+
+def test_a_law_that_bends_over_the_record_is_seen_and_a_right_one_is_not():
+    """The law test (law.law_test): a loss growing as w^1.5, fitted by the viscous law b w,
+    leaves the difference of the two curves (here 14 % of the loss, 9.6 sigma rms); bent
+    by |w| and w^2, the law removes that difference -- its share of the residual's sum of
+    squares within 2 % -- and passes the BIC margin, so the law is bent. A loss that is
+    viscous leaves only noise: over 20 seeds of white and of AR(1) noise the bend never
+    passes the margin nor removes more than 1 % of the residual."""
+    from circuitsim.loop.diagnose.decide import BIC_MARGIN
+
+    test, error = _law_case(1.5, seed=4)
+    share = float(error @ error) / (float(error @ error) + error.size)
+    assert float(np.sqrt(np.mean(error ** 2))) > 5.0
+    assert test.delta_bic < -BIC_MARGIN and test.bent
+    assert test.removed == pytest.approx(share, abs=0.02)
+    assert test.bends[0] > 0  # it grows faster than the law with |w|
+    for phi in (0.0, 0.8):
+        for seed in range(20):
+            right, _ = _law_case(1.0, seed=seed, phi=phi)
+            assert right.delta_bic > -BIC_MARGIN and not right.bent, (phi, seed, right)
+            assert right.removed < 0.01
+
+
 def test_an_effect_whose_parameters_are_not_constants_is_a_stand_in(monkeypatch):
     """Stage 5c (engine._unstable): an effect whose per-quarter values gain a quarter of what
     it explains, past the BIC margin, is kept out and reported; one that gains less (or not

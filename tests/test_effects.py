@@ -31,6 +31,9 @@ def test_catalog_covers_the_interface_ids():
     # a breakaway peak refines a friction the netlist has: proposed once there is one
     coulomb = next(c for c in effects.candidates(net) if c.effect == "coulomb-friction")
     found |= {c.effect for c in effects.candidates(build(coulomb.apply(net.raw)))}
+    # a brush drop's transition width refines a drop accepted before
+    brush = next(c for c in effects.candidates(net) if c.effect == "brush-drop")
+    found |= {c.effect for c in effects.candidates(build(brush.apply(net.raw)))}
     # a play needs a declared coupling between two bodies
     found |= {c.effect for c in effects.candidates(cs.load(TWO_MASS))}
     assert found == set(effects.CATALOG_IDS)

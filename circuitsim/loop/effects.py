@@ -19,10 +19,29 @@ from typing import Any
 from circuitsim.errors import SourceLoc
 from circuitsim.netlist.load import Netlist, RawNetlist
 
-CATALOG_IDS = ("series-resistance", "source-resistance", "brush-drop", "coulomb-friction",
+CATALOG_IDS = ("series-resistance", "source-resistance", "brush-drop", "brush-transition",
+               "coulomb-friction",
                "stribeck-friction", "viscous-friction", "cogging", "unbalance", "emf-harmonic",
                "inductor-saturation", "resistance-drift", "force-offset", "sensor-gain",
                "sensor-offset", "sensor-delay", "backlash", "inertia", "inductance")
+
+
+@dataclass(frozen=True)
+class Law:
+    """Where and how an effect acts, for the test of its law (``loop/diagnose/law.py``).
+
+    place : ("series", component) -- a voltage in series with it; ("torque", node) or
+        ("force", node) -- applied to a body; ("probe", probe) -- the sensor's reading.
+    value : the expression of what the effect adds there [V, N*m, N], in its own
+        parameters and circuit quantities (for a probe: "gain", "offset" or "delay").
+    terms : (driver expression, shape) pairs: the law is tested for a dependence on each
+        driver it does not have (shape "abs": on |u|, "square": on u^2, "centred": on u
+        about its mean); for a probe, the shapes the reading may have beyond the law.
+    """
+
+    place: tuple[str, str]
+    value: str
+    terms: tuple[tuple[str, str], ...]
 
 
 @dataclass(frozen=True)
@@ -51,6 +70,8 @@ class Candidate:
     # the fitted values, why they lie beyond it, or "" when they do not
     limit: Callable[[Mapping[str, float]], str] | None = field(default=None, repr=False,
                                                                 compare=False)
+    # where and how it acts, for the test of its law over the record's operating range
+    law: Law | None = field(default=None, repr=False, compare=False)
 
     @property
     def key(self) -> str:
@@ -188,14 +209,14 @@ def _electrical(net: Netlist) -> list[Candidate]:
                              f"a resistance R in series with {t}",
                              lambda r, t=t, p=p: _insert_series(r, t, f"SR_{t}",
                                                                 f"{p}*{t}.i"),
-                             steps={p: 1e-3}))
+                             steps={p: 1e-3}, law=_current_law(t, f"{p}*{t}.i")))
     for t in _electrical_two_pins(net, kinds={"V"}):
         p = _pname("source-resistance", t, "R")
         out.append(Candidate("source-resistance", t, {p: (0.0, 0.0, 1e3)}, {},
                              f"an internal resistance R of source {t}",
                              lambda r, t=t, p=p: _insert_series(r, t, f"RS_{t}",
                                                                 f"{p}*{t}.i"),
-                             steps={p: 1e-3}))
+                             steps={p: 1e-3}, law=_current_law(t, f"{p}*{t}.i")))
     return out
 
 
@@ -208,7 +229,10 @@ def _converter_effects(net: Netlist, orders: Mapping[str, list[int]]) -> list[Ca
         out.append(Candidate("brush-drop", t, {p: (0.0, 0.0, 50.0)}, {"i_eps": BRUSH_EPS},
                              f"a brush contact drop Vb*sign(i) in series with {t}",
                              lambda r, t=t, p=p: _insert_series(
-                                 r, t, f"BD_{t}", f"{p}*tanh({t}.i/{BRUSH_EPS!r})"), steps={p: 1e-2}))
+                                 r, t, f"BD_{t}", f"{p}*tanh({t}.i/{BRUSH_EPS!r})"), steps={p: 1e-2},
+                             law=_current_law(t, f"{p}*tanh({t}.i/{BRUSH_EPS!r})")))
+        if net.raw is not None and f"BD_{t}" in net.raw.patch_parts:
+            out.append(_brush_transition(t, p))
         for k in orders.get(shaft, []):
             a = _pname("emf-harmonic", f"{t}_{k}", "a")
             b = _pname("emf-harmonic", f"{t}_{k}", "b")
@@ -218,8 +242,33 @@ def _converter_effects(net: Netlist, orders: Mapping[str, list[int]]) -> list[Ca
                 lambda r, t=t, k=k, a=a, b=b, s=shaft: _insert_series(
                     r, t, f"EH{k}_{t}",
                     f"{s}.w*({a}*sin({k}*{s}.phi) + {b}*cos({k}*{s}.phi))"),
-                steps={a: 1e-4, b: 1e-4}))
+                steps={a: 1e-4, b: 1e-4},
+                law=Law(("series", t), f"{shaft}.w*({a}*sin({k}*{shaft}.phi) + "
+                        f"{b}*cos({k}*{shaft}.phi))", ((f"{t}.i", "abs"), (f"{shaft}.w", "abs")))))
     return out
+
+
+#: [A] the widest current over which a brush contact's drop builds up: beyond it the
+#: contact is a resistance (the catalog's series resistance), not a drop
+BRUSH_EPS_MAX = 1.0
+
+
+def _brush_transition(t: str, vb: str) -> Candidate:
+    """The width of a brush drop's transition through zero current, a refinement of an
+    accepted drop: Vb tanh(i/eps) with eps free (null: the drop's own 1 mA). A real contact
+    builds its drop over milliamperes to a fraction of an ampere; with the width fixed at
+    1 mA a softer contact leaves a residual wherever the current crosses zero slowly."""
+    e = _pname("brush-transition", t, "eps")
+    law = f"{vb}*tanh({t}.i/{e})"
+    return Candidate("brush-transition", t, {e: (BRUSH_EPS, 1e-5, BRUSH_EPS_MAX)}, {},
+                     f"the width eps of the brush drop's transition through zero current in "
+                     f"{t}: Vb tanh(i/eps)",
+                     lambda r, t=t, law=law: _set_expr(r, f"BD_{t}", law),
+                     steps={e: 0.1 * BRUSH_EPS}, law=_current_law(t, law))
+
+
+def _set_expr(raw: RawNetlist, name: str, expr: str) -> None:
+    raw.component_entry(name)["expr"] = expr
 
 
 def _mechanical(net: Netlist, orders: Mapping[str, list[int]]) -> list[Candidate]:
@@ -235,14 +284,17 @@ def _mechanical(net: Netlist, orders: Mapping[str, list[int]]) -> list[Candidate
                 "name": f"CF_{n}", "type": "friction" if rot else "tfriction",
                 ("shaft" if rot else "flange"): n, ("tau_c" if rot else "f_c"): p,
                 ("w_brk" if rot else "v_brk"): 0.1 if rot else 1e-3}),
-            steps={p: 1e-4 if rot else 1e-1}))
+            steps={p: 1e-4 if rot else 1e-1},
+            law=_speed_law(node, rot, f"-{p}*tanh({_speed(node, rot)}/"
+                                      f"{0.01 if rot else 1e-4!r})")))
         p = _pname("viscous-friction", node, "b")
         out.append(Candidate(
             "viscous-friction", node, {p: (0.0, 0.0, 1e6)}, {}, f"viscous friction on {node}",
             lambda r, n=node, p=p, rot=rot: _add(r, {
                 "name": f"VF_{n}", "type": "damper" if rot else "tdamper",
                 ("shaft" if rot else "flange"): n, ("b" if rot else "d"): p}),
-            steps={p: 1e-6 if rot else 1.0}))
+            steps={p: 1e-6 if rot else 1.0},
+            law=_speed_law(node, rot, f"-{p}*{_speed(node, rot)}")))
         p = _pname("force-offset", node, "F")
         out.append(Candidate(
             "force-offset", node, {p: (0.0, -1e4, 1e4)}, {},
@@ -250,7 +302,10 @@ def _mechanical(net: Netlist, orders: Mapping[str, list[int]]) -> list[Candidate
             lambda r, n=node, p=p, rot=rot: _add(r, {
                 "name": f"FO_{n}", "type": "torque" if rot else "force",
                 ("shaft" if rot else "flange"): n, ("T" if rot else "F"): p}),
-            steps={p: 1e-4 if rot else 1e-1}))
+            steps={p: 1e-4 if rot else 1e-1},
+            law=Law(("torque" if rot else "force", node), p,
+                    ((f"{node}.phi" if rot else f"{node}.x", "centred"),
+                     (_speed(node, rot), "abs")))))
         if rot:
             if _has_friction(net, node):
                 out.extend(_stribeck(node))
@@ -267,8 +322,27 @@ def _mechanical(net: Netlist, orders: Mapping[str, list[int]]) -> list[Candidate
                         "name": f"CG{k}_{n}", "type": "cogging", "shaft": n,
                         "harmonics": [{"order": k, "amplitude": a, "phase": 0},
                                       {"order": k, "amplitude": b, "phase": 1.5707963267948966}]
-                    }), steps={a: 1e-4, b: 1e-4}))
+                    }), steps={a: 1e-4, b: 1e-4},
+                    law=_speed_law(node, True, f"{a}*sin({k}*{node}.phi) + "
+                                               f"{b}*cos({k}*{node}.phi)")))
     return out
+
+
+def _speed(node: str, rot: bool) -> str:
+    return f"{node}.w" if rot else f"{node}.v"
+
+
+def _speed_law(node: str, rot: bool, value: str) -> Law:
+    """A law of a body's speed: tested for a dependence on |speed| and speed^2 it lacks."""
+    v = _speed(node, rot)
+    return Law(("torque" if rot else "force", node), value, ((v, "abs"), (v, "square")))
+
+
+def _current_law(component: str, value: str) -> Law:
+    """A voltage in series with ``component``: tested for a dependence on |i| and i^2 it
+    lacks (a contact's voltage growing slower than a resistance's)."""
+    i = f"{component}.i"
+    return Law(("series", component), value, ((i, "abs"), (i, "square")))
 
 
 def _stribeck(node: str) -> list[Candidate]:
@@ -302,6 +376,7 @@ def _warmup(name: str, duration: float) -> list[Candidate]:
             f"{name} warming up to a final value with a time constant",
             lambda r, n=name, i=i, law=law: _insert_series(r, n, f"RW{i}_{n}", law),
             steps={rise: 1e-3, tau: 1e-2 * f * duration}, shape=(tau,),
+            law=_current_law(name, law),
             limit=lambda v, n=name, rise=rise, tau=tau: _drift_rate(n, v[rise] / v[tau])))
     return out
 
@@ -361,7 +436,9 @@ def _component_laws(net: Netlist, duration: float | None = None) -> list[Candida
             out.append(Candidate(
                 "resistance-drift", c.name, {p: (0.0, -rate, rate)}, {},
                 f"{c.name} drifting with time (warming up)",
-                lambda r, n=c.name, p=p: _drift(r, n, p), steps={p: 1e-3}))
+                lambda r, n=c.name, p=p: _drift(r, n, p), steps={p: 1e-3},
+                law=Law(("series", c.name), f"{p}*t*{c.name}.v",
+                        ((f"{c.name}.i", "abs"), ("t", "square")))))
             if duration:
                 out.extend(_warmup(c.name, duration))
     return out
@@ -413,11 +490,11 @@ def _sensors(probes: Sequence[str] | Mapping[str, str]) -> list[Candidate]:
         out.append(Candidate("sensor-gain", name, {g: (0.0, -0.5, 0.5)}, {},
                              f"a gain error g of the sensor of {name}: reads (1 + g) x",
                              lambda r, n=name, g=g: _probe_patch(r, n, g, "(1 + {v})*({x})"),
-                             steps={g: 1e-3}))
+                             steps={g: 1e-3}, law=Law(("probe", name), "gain", ())))
         out.append(Candidate("sensor-offset", name, {o: (0.0, -1e6, 1e6)}, {},
                              f"an offset o of the sensor of {name}: reads x + o",
                              lambda r, n=name, o=o: _probe_patch(r, n, o, "({x}) + {v}"),
-                             steps={o: 1e-3}))
+                             steps={o: 1e-3}, law=Law(("probe", name), "offset", ())))
         if name not in units:
             continue
         d = _pname("sensor-delay", name, "tau")
@@ -425,7 +502,7 @@ def _sensors(probes: Sequence[str] | Mapping[str, str]) -> list[Candidate]:
                              f"a delay tau of the sensor of {name} (its filter or sampling "
                              f"lag): reads x(t - tau)",
                              lambda r, n=name, d=d, u=units[name]: _probe_delay(r, n, d, u),
-                             steps={d: 1e-5}))
+                             steps={d: 1e-5}, law=Law(("probe", name), "delay", ())))
     return out
 
 

@@ -53,6 +53,7 @@ from circuitsim.loop.diagnose.decide import (
     refit_trial,
 )
 from circuitsim.loop.diagnose.describe import remaining
+from circuitsim.loop.diagnose.law import bent_raw
 from circuitsim.loop.diagnose.netlist_out import _with_values
 from circuitsim.loop.diagnose.noise import delta_bic, whiteners_of
 from circuitsim.loop.diagnose.residual import (
@@ -162,6 +163,15 @@ def fit_declared(netlist, record, free, probes, params, rtol, max_effects, progr
                              net.raw)
 
 
+def _expect_bent(state: ModelState) -> None:
+    """The circuits the law test bends at the end (``law``), as the model stands: a worker
+    may compile them while the search goes on."""
+    if ahead.enabled():
+        raws = [bent_raw(state.raw, c.candidate.law) for c in state.chosen
+                if not c.correction and getattr(c.candidate, "law", None) is not None]
+        ahead.expect([r for r in raws if r is not None])
+
+
 def _expect_grid(raw) -> None:
     """The grid-screened candidates' topologies are the first the next round compiles alone:
     a worker may compile them ahead (``solve/ahead.py``) while this process fits."""
@@ -206,6 +216,7 @@ def search(setup: Setup, state: ModelState, screen_top: int, clock: dict[str, fl
         state = _accept(setup, state, winner, log)
         _expect_grid(state.raw)
         state = _backward(setup, _swap(setup, state, log), log)
+        _expect_bent(state)
         # with another effect in place, what was rejected may now be needed (an offset that
         # only shows once the friction is there): every candidate is open again
         log["tried"] = set()
@@ -503,6 +514,7 @@ def _distinct_combos(options: list[list[Choice]]) -> list[tuple[Choice, ...]]:
 def _refit_choices(setup: Setup, state: ModelState, chosen: list[Choice],
                    log: dict[str, Any]) -> ModelState | None:
     """The declared model with ``chosen`` patched in, refitted from the values known."""
+    chosen = _with_bases(chosen)
     raw = _base_raw(state, chosen)
     free = [*setup.declared, *(n for c in chosen for n in c.candidate.free)]
     patched = {n for c in state.chosen for n in c.candidate.free}
@@ -542,8 +554,9 @@ def _backward(setup: Setup, state: ModelState, log: dict[str, Any]) -> ModelStat
 
 
 def _without(setup: Setup, state: ModelState, keep: list[Choice]) -> ModelState | None:
-    """The model with only the choices ``keep``, refitted from the values it has (None when
-    the refit fails)."""
+    """The model with only the choices ``keep`` (less a refinement whose effect is gone),
+    refitted from the values it has (None when the refit fails)."""
+    keep = _with_bases(keep)
     raw = _base_raw(state, keep)
     gone = {n for c in state.chosen if c not in keep for n in c.candidate.free}
     free = [n for n in state.free if n not in gone]
@@ -624,9 +637,9 @@ def _unstable(setup: Setup, state0: ModelState, state: ModelState, log: dict[str
         return state
     names = "; ".join(f"{c.candidate.effect} on {c.candidate.target} ({v.why()})"
                       for c, v in found)
-    why = (f"a stand-in whose parameters are not constants of the record: {names}; a "
-           f"physical effect's are, so it fits a cause outside the catalog only on average; "
-           f"not accepted")
+    why = (f"a stand-in: {names}; a physical effect's parameters are constants of the "
+           f"record and its law holds over the whole of it, so this fits a cause outside the "
+           f"catalog only approximately; not accepted")
     setup.log(why)
     log["stand_ins"] = why
     for c, _ in found:
@@ -656,26 +669,45 @@ def _unstable_effects(setup: Setup, state: ModelState, log: dict[str, Any]
 def _base_raw(state: ModelState, chosen: list[Choice]):
     """The declared netlist with the given choices' patches, in order."""
     raw = state.base_raw
-    for c in chosen:
+    for c in _with_bases(chosen):
         raw = c.candidate.apply(raw)
     return raw
 
 
+#: refinements that rewrite the patch of the effect they refine: without it they are void
+NEEDS_BASE = {"brush-transition": "brush-drop"}
+
+
+def _with_bases(chosen: list[Choice]) -> list[Choice]:
+    """``chosen`` without a refinement whose effect is not among them (a brush drop's
+    transition width once the drop itself is dropped or swapped)."""
+    have = {(c.candidate.effect, c.candidate.target) for c in chosen}
+    return [c for c in chosen if c.candidate.effect not in NEEDS_BASE or
+            (NEEDS_BASE[c.candidate.effect], c.candidate.target) in have]
+
+
 # ------------------------------------------------------------------------------- report
 
+#: refinement -> the effect it refines, and which of the two names the merged effect
+REFINES = {"stribeck-friction": ("coulomb-friction", "stribeck-friction"),
+           "brush-transition": ("brush-drop", "brush-drop")}
+
+
 def _merge_refinements(accepted: list[Accepted]) -> list[Accepted]:
-    """A breakaway peak refines the Coulomb friction of its node: together they are one
-    effect, Stribeck friction, with the parameters of both."""
+    """A refinement and the effect it refines are one effect, with the parameters of both: a
+    breakaway peak over the Coulomb friction of its node is Stribeck friction; a brush drop's
+    transition width is part of the brush drop."""
     out = list(accepted)
-    for peak in [a for a in out if a.effect == "stribeck-friction"]:
-        base = next((a for a in out if a.effect == "coulomb-friction" and
-                     a.target == peak.target), None)
+    for fine in [a for a in out if a.effect in REFINES]:
+        kind, name = REFINES[fine.effect]
+        base = next((a for a in out if a.effect == kind and a.target == fine.target), None)
         if base is None:
             continue
         out.remove(base)
-        peak.parameters = {**base.parameters, **peak.parameters}
-        peak.stderr = {**base.stderr, **peak.stderr}
-        peak.evidence = {**peak.evidence, "refines": base.evidence}
+        fine.parameters = {**base.parameters, **fine.parameters}
+        fine.stderr = {**base.stderr, **fine.stderr}
+        fine.evidence = {**fine.evidence, "refines": base.evidence}
+        fine.effect = name
     return out
 
 

@@ -36,7 +36,8 @@ from scipy import fft
 
 from circuitsim.loop.diagnose.context import ModelState, Setup, compile_raw, simulate_many
 from circuitsim.loop.diagnose.decide import BIC_MARGIN
-from circuitsim.loop.diagnose.noise import Whitener, delta_bic, whiteners_of
+from circuitsim.loop.diagnose.law import LawTest, law_test
+from circuitsim.loop.diagnose.regress import added_test
 
 SEGMENTS = 4  # equal pieces of the record, each with its own copy of the parameters
 BANDS = 4  # frequency bands, each with an equal share of the effect's sensitivity energy
@@ -59,6 +60,7 @@ class Stability:
     own: float  # what the effect itself explains [same units]
     band_delta_bic: float = 0.0  # BIC change of the per-band copies [-]
     band_gain: float = 0.0  # their gain [same units as gain]
+    law: LawTest | None = None  # bending its law over the operating range (``law``)
 
     @property
     def over_time(self) -> bool:
@@ -72,12 +74,18 @@ class Stability:
                 and self.band_gain >= STABLE_SHARE * self.own)
 
     @property
-    def unstable(self) -> bool:
-        return self.over_time or self.over_frequency
+    def bent(self) -> bool:
+        """Its law does not hold over the record's operating range (``law``)."""
+        return self.law is not None and self.law.bent
 
-    def as_dict(self) -> dict[str, float]:
+    @property
+    def unstable(self) -> bool:
+        return self.over_time or self.over_frequency or self.bent
+
+    def as_dict(self) -> dict[str, object]:
         return {"delta_bic": self.delta_bic, "gain": self.gain, "own_gain": self.own,
-                "band_delta_bic": self.band_delta_bic, "band_gain": self.band_gain}
+                "band_delta_bic": self.band_delta_bic, "band_gain": self.band_gain,
+                **({"law": self.law.as_dict()} if self.law is not None else {})}
 
     def why(self) -> str:
         """The split(s) that found the parameters unstable, in words."""
@@ -90,6 +98,8 @@ class Stability:
             out.append(f"fitted on each quarter of its frequency content on its own, it "
                        f"explains {self.band_gain / self.own:.0%} as much again, ΔBIC "
                        f"{self.band_delta_bic:.0f}")
+        if self.bent:
+            out.append(self.law.why())
         return "; ".join(out)
 
 
@@ -105,7 +115,7 @@ def split_test(residuals: Mapping[str, np.ndarray], columns: Sequence[Mapping[st
     piece = np.minimum(np.arange(n) * segments // n, segments - 1)
     split = [{p: np.where(piece == s, c[p], 0.0) for p in probes}
              for c in columns for s in range(1, segments)]
-    return _copies_test(residuals, columns, split, weights, probes)
+    return added_test(residuals, columns, split, weights, probes)
 
 
 def band_test(residuals: Mapping[str, np.ndarray], columns: Sequence[Mapping[str, np.ndarray]],
@@ -128,53 +138,17 @@ def band_test(residuals: Mapping[str, np.ndarray], columns: Sequence[Mapping[str
     used = [b for b in range(1, bands) if np.any(band == b)]
     split = [{p: fft.idct(np.where(band == b, s[p], 0.0), norm="ortho") for p in probes}
              for s in spectra for b in used]
-    return _copies_test(residuals, columns, split, weights, probes)
+    return added_test(residuals, columns, split, weights, probes)
 
 
-def _copies_test(residuals: Mapping[str, np.ndarray],
-                 columns: Sequence[Mapping[str, np.ndarray]],
-                 split: Sequence[Mapping[str, np.ndarray]], weights: Mapping[str, float],
-                 probes: Sequence[str]) -> tuple[float, float]:
-    """(ΔBIC, gain) of the regressors ``split`` added to ``columns`` (see ``split_test``)."""
-    n = len(np.asarray(residuals[probes[0]]))
-    whole = list(columns)
-    if not split:
-        return 0.0, 0.0
-    raw = _stack(residuals, probes, weights)
-    x = np.column_stack([_stack(c, probes, weights) for c in whole + split])
-    beta, *_ = np.linalg.lstsq(x, raw, rcond=None)
-    left = raw - x @ beta
-    whiten = whiteners_of({p: left[k * n:(k + 1) * n] for k, p in enumerate(probes)}, probes)
-
-    def stack(series: Mapping[str, np.ndarray]) -> np.ndarray:
-        return _stack(series, probes, weights, whiten)
-
-    r = stack(residuals)
-    sizes = [whiten[p].apply(np.zeros(n)).size for p in probes]
-    old = _probe_sse(r, np.column_stack([stack(c) for c in whole]), probes, sizes)
-    new = _probe_sse(r, np.column_stack([stack(c) for c in whole + split]), probes, sizes)
-    gain = sum((old[p] - new[p]) / max(new[p] / m, 1e-300) for p, m in zip(probes, sizes,
-                                                                           strict=True))
-    return delta_bic(new, old, n, len(split), probes), max(gain, 0.0)
-
-
-def _stack(series: Mapping[str, np.ndarray], probes: Sequence[str],
-           weights: Mapping[str, float], whiten: Mapping[str, Whitener] | None = None
-           ) -> np.ndarray:
-    """The probes' series, each prewhitened (when ``whiten``) and over its noise level."""
-    return np.concatenate([(whiten[p].apply(np.asarray(series[p], float)) if whiten else
-                            np.asarray(series[p], float)) / weights[p] for p in probes])
-
-
-def _probe_sse(r: np.ndarray, x: np.ndarray, probes: Sequence[str], sizes: Sequence[int]
-               ) -> dict[str, float]:
-    """Each probe's sum of squares of ``r`` less its least-squares fit on ``x``."""
-    beta, *_ = np.linalg.lstsq(x, r, rcond=None)
-    e = r - x @ beta
-    out, i = {}, 0
-    for p, m in zip(probes, sizes, strict=True):
-        out[p] = float(e[i:i + m] @ e[i:i + m])
-        i += m
+def steps_of(state: ModelState, candidate) -> list[tuple[str, float]]:
+    """(parameter, forward-difference step) for each free parameter of ``candidate``."""
+    out = []
+    for name in candidate.free:
+        v = float(state.params[name])
+        # a value of 0 has no scale of its own: a tenth of the screen's linear step
+        h = max(RELATIVE_STEP * abs(v), 0.1 * candidate.steps.get(name, 0.0)) or RELATIVE_STEP
+        out.append((name, h if v + h <= state.bounds.get(name, (-np.inf, np.inf))[1] else -h))
     return out
 
 
@@ -183,14 +157,10 @@ def sensitivities(setup: Setup, state: ModelState, candidate
     """Forward differences of the probes in each free parameter of ``candidate`` about the
     fitted values, from one batched run (None when a run fails)."""
     model = state.model or compile_raw(state.raw)
-    steps, points = [], [dict(state.params)]
-    for name in candidate.free:
-        v = float(state.params[name])
-        # a value of 0 has no scale of its own: a tenth of the screen's linear step
-        h = max(RELATIVE_STEP * abs(v), 0.1 * candidate.steps.get(name, 0.0)) or RELATIVE_STEP
-        h = h if v + h <= state.bounds.get(name, (-np.inf, np.inf))[1] else -h
-        steps.append(h)
-        points.append({**state.params, name: v + h})
+    pairs = steps_of(state, candidate)
+    steps = [h for _, h in pairs]
+    points = [dict(state.params)] + [{**state.params, n: state.params[n] + h}
+                                     for n, h in pairs]
     runs = simulate_many(setup, model, points)
     if any(run is None for run in runs):
         return None
@@ -209,4 +179,5 @@ def stability(setup: Setup, state: ModelState, candidate, own: float) -> Stabili
     if columns is None:
         return None
     args = (state.fit.residuals, columns, setup.weights, setup.probes)
-    return Stability(*split_test(*args), own, *band_test(*args))
+    bend = law_test(setup, state, candidate, columns, steps_of(state, candidate))
+    return Stability(*split_test(*args), own, *band_test(*args), bend)
