@@ -48,13 +48,19 @@ MOTORS = {
                "motor_d_slow.yaml", "stop": 6.0, "rate": 1e3,
                "noise": {"speed": 0.2, "current": 1e-2, "load_speed": 0.02},
                "lsb": {"speed": 0.05, "current": 5e-3, "load_speed": 0.01}},
+    # a servo swinging a robot arm through a 100:1 harmonic drive (the benchmark's motor J,
+    # slow regime): the arm turns through 4.7 rad in all, never a whole turn
+    "j-slow": {"netlist": NETLISTS.parent / "benchmarks" / "diagnosis" / "netlists" /
+               "motor_j_slow.yaml", "stop": 5.0, "rate": 1e3,
+               "noise": {"speed": 0.2, "current": 2e-2, "load_speed": 5e-3},
+               "lsb": {"speed": 0.05, "current": 5e-3, "load_speed": 1e-3}},
 }
 
 
 def _candidate(net, effect, target, order, probes, shaped=False):
     """The catalog's candidate; ``shaped``: one with a shape parameter where the effect has
     both kinds (a warm-up rather than a straight drift), at its first start."""
-    orders = {"rotor": [order]} if order else None
+    orders = {n: [order] for n in ("rotor", target)} if order else None
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         units = cs.compile(net).meta["units"]
@@ -333,3 +339,19 @@ def test_a_loss_growing_faster_than_a_viscous_friction_is_not_named_one():
     assert d.remaining["structure"], d.summary()
     assert "its law does not hold" in d.remaining.get("stand_ins", ""), d.summary()
     assert "viscous-friction on rotor" in d.remaining["stand_ins"], d.summary()
+
+
+def test_an_unbalance_of_an_arm_that_never_turns_once_through_the_loop():
+    """A torque once per turn of the arm (its weight on a tilted base: 0.3 N m sin(phi +
+    0.8)) on an arm that swings through 4.7 rad and never turns once: no line in any
+    spectrum can show its order, but order 1 is looked for on every shaft, and it is named
+    as an unbalance of the arm (or of the drive's output before the compliant flexspline,
+    which turns with it) with its amplitude and phase."""
+    a, b = 0.3 * np.cos(0.8), 0.3 * np.sin(0.8)
+    rec = make_record("j-slow", [("unbalance", "arm", 1, [a, b])], seed=18)
+    d = diagnose(cs.load(MOTORS["j-slow"]["netlist"]), rec)
+    assert [(x.effect, x.parameters["order"]) for x in d.effects] == [("unbalance", 1)], \
+        d.summary()
+    got = [v for k, v in d.effects[0].parameters.items() if k != "order"]
+    assert np.hypot(*got) == pytest.approx(0.3, rel=0.05), d.summary()
+    assert np.arctan2(got[1], got[0]) == pytest.approx(0.8, abs=0.05), d.summary()

@@ -306,3 +306,58 @@ def test_patches_that_scale_a_value_take_it_with_its_unit(tmp_path):
             assert res["i"] == pytest.approx(1 - np.exp(-t / tau), rel=1e-7, abs=1e-12)
     assert seen == {"inertia", "inductance", "inductor-saturation"}
     assert {c.effect: c.retunes for c in effects.candidates(net)}["inductance"]
+
+
+def test_a_brush_transition_is_the_drop_itself_at_its_null_and_softer_away_from_it():
+    """brush-transition rewrites the accepted drop's law Vb tanh(i/1 mA) as Vb tanh(i/eps):
+    at eps = 1 mA the circuit is the drop's to the integrator's tolerance; at a wider eps the
+    drop is smaller where |i| is within a few eps of zero (the start-up from rest), and its
+    width is bounded by BRUSH_EPS_MAX."""
+    net = cs.load(CASE1)
+    brush = next(c for c in effects.candidates(net) if c.effect == "brush-drop")
+    raw = brush.apply(net.raw)
+    fine = next(c for c in effects.candidates(build(raw)) if c.effect == "brush-transition")
+    (eps, (null, lo, hi)), = fine.free.items()
+    assert (null, hi) == (effects.BRUSH_EPS, effects.BRUSH_EPS_MAX) and 0 < lo < null
+    vb = next(iter(brush.free))
+    t = np.linspace(0.0, 0.02, 201)
+    drop = _compile(build(raw)).simulate(stop=0.02, t_eval=t, params={vb: 0.5}, rtol=1e-10,
+                                         atol=1e-12)
+    refined = _compile(build(fine.apply(raw)))
+    same = refined.simulate(stop=0.02, t_eval=t, params={vb: 0.5}, rtol=1e-10, atol=1e-12)
+    np.testing.assert_allclose(same["i_total"], drop["i_total"], rtol=1e-7, atol=1e-9)
+    wide = refined.simulate(stop=0.02, t_eval=t, params={vb: 0.5, eps: 0.2}, rtol=1e-10,
+                            atol=1e-12)
+    # a softer contact drops less while the current is small: the start-up current is higher
+    assert wide["i_total"][5] > drop["i_total"][5]
+
+
+def test_order_one_is_looked_for_on_every_shaft():
+    net = cs.load(TWO_MASS)
+    shafts = {n for n, (d, _) in net.nodes.items() if d == "rotational" and n != "fixed"}
+    assert effects.always_orders(net) == {n: [1] for n in shafts} and len(shafts) == 2
+
+
+def test_a_law_bent_at_its_null_is_the_accepted_circuit():
+    """law.bent_raw: the effect's contribution times the bend's shapes, each times a new
+    parameter at 0, is the accepted circuit exactly; a bend of +10 % where |w| is largest
+    strengthens the viscous friction by 10 % of its torque there (the speed falls)."""
+    from circuitsim.loop.diagnose.law import _names, bent_raw
+
+    net = cs.load(CASE1)
+    visc = next(c for c in effects.candidates(net) if c.effect == "viscous-friction" and
+                c.target == "rotor")
+    raw = visc.apply(net.raw)
+    b = next(iter(visc.free))
+    names = _names(visc.law)
+    bent = _compile(build(bent_raw(raw, visc.law)))
+    scale = {n: 1.0 for _, _, n in names} | {names[0][2]: 700.0}
+    t = np.linspace(0.0, 0.05, 51)
+    base = _compile(build(raw)).simulate(stop=0.05, t_eval=t, params={b: 1e-4}, rtol=1e-10,
+                                         atol=1e-12)
+    null = bent.simulate(stop=0.05, t_eval=t, params={b: 1e-4, **scale}, rtol=1e-10,
+                         atol=1e-12)
+    np.testing.assert_allclose(null["speed"], base["speed"], rtol=1e-9, atol=1e-9)
+    more = bent.simulate(stop=0.05, t_eval=t, params={b: 1e-4, **scale, names[0][0]: 0.1},
+                         rtol=1e-10, atol=1e-12)
+    assert np.all(more["speed"][10:] < base["speed"][10:])

@@ -286,7 +286,7 @@ def _mechanical(net: Netlist, orders: Mapping[str, list[int]]) -> list[Candidate
                 ("w_brk" if rot else "v_brk"): 0.1 if rot else 1e-3}),
             steps={p: 1e-4 if rot else 1e-1},
             law=_speed_law(node, rot, f"-{p}*tanh({_speed(node, rot)}/"
-                                      f"{0.01 if rot else 1e-4!r})")))
+                                      f"{0.01 if rot else 1e-4!r})", turn=True)))
         p = _pname("viscous-friction", node, "b")
         out.append(Candidate(
             "viscous-friction", node, {p: (0.0, 0.0, 1e6)}, {}, f"viscous friction on {node}",
@@ -294,7 +294,7 @@ def _mechanical(net: Netlist, orders: Mapping[str, list[int]]) -> list[Candidate
                 "name": f"VF_{n}", "type": "damper" if rot else "tdamper",
                 ("shaft" if rot else "flange"): n, ("b" if rot else "d"): p}),
             steps={p: 1e-6 if rot else 1.0},
-            law=_speed_law(node, rot, f"-{p}*{_speed(node, rot)}")))
+            law=_speed_law(node, rot, f"-{p}*{_speed(node, rot)}", turn=True)))
         p = _pname("force-offset", node, "F")
         out.append(Candidate(
             "force-offset", node, {p: (0.0, -1e4, 1e4)}, {},
@@ -332,10 +332,22 @@ def _speed(node: str, rot: bool) -> str:
     return f"{node}.w" if rot else f"{node}.v"
 
 
-def _speed_law(node: str, rot: bool, value: str) -> Law:
-    """A law of a body's speed: tested for a dependence on |speed| and speed^2 it lacks."""
+def _speed_law(node: str, rot: bool, value: str, turn: bool = False) -> Law:
+    """A law of a body's speed: tested for a dependence on |speed| and speed^2 it lacks;
+    ``turn``: and on the shaft's angle once per turn (a friction is the same all round a
+    turn; a brake disc that rubs where it is warped is not)."""
     v = _speed(node, rot)
-    return Law(("torque" if rot else "force", node), value, ((v, "abs"), (v, "square")))
+    terms = ((v, "abs"), (v, "square"))
+    if turn and rot:
+        terms += ((f"{node}.phi", "cos"), (f"{node}.phi", "sin"))
+    return Law(("torque" if rot else "force", node), value, terms)
+
+
+def always_orders(net: Netlist) -> dict[str, list[int]]:
+    """Orders looked for on every shaft whether or not the residual shows their line: order
+    1, a torque once per turn (an unbalance, an eccentric load, an arm's weight), which a
+    shaft that turns less than a few times in the record shows as no line at all."""
+    return {n: [1] for n, d in _mechanical_nodes(net) if d == "rotational"}
 
 
 def _current_law(component: str, value: str) -> Law:

@@ -18,8 +18,9 @@ The stages, each a function of plain objects (``context``):
    they leave are a partial stand-in for a cause outside the catalog, and kept out.
    ``_unstable``: an effect whose parameters, fitted on each quarter of the record, differ by
    as much as a fair part of the effect (``stability``) fits such a cause only on average: it
-   is a stand-in too; so is one whose values differ between bands of the record's spectrum
-   (a delay standing in for a lag).
+   is a stand-in too; so is one whose values differ between bands of the record's spectrum,
+   and one whose law, let bend over the record's operating range, removes a fair share of
+   what the final model leaves (``law``: a viscous friction standing in for an iron loss).
 6. ``describe.remaining`` -- what structure is left, in plain terms, never a catalog label.
 7. ``Diagnosis`` (``result``) -- the report: error before and after, effects, corrections,
    what could not be told apart, what was rejected and why, what remains.
@@ -611,10 +612,12 @@ def _stand_ins(setup: Setup, state0: ModelState, state: ModelState, log: dict[st
 def _unstable(setup: Setup, state0: ModelState, state: ModelState, log: dict[str, Any]
               ) -> ModelState:
     """Stage 5c: a new effect whose parameters are not constants of the record (fitted on
-    each quarter of it, they differ by as much as a fair part of the effect: ``stability``)
-    fits a cause outside the catalog only on average -- a warm-up of the winding in place of
-    an armature reaction. It is reported as a stand-in and kept out of the netlist; the
-    others stay, and are tested again without it (alone, one may now carry what it did)."""
+    each quarter of it, they differ by as much as a fair part of the effect: ``stability``),
+    or whose law does not hold over it (``law``), fits a cause outside the catalog only
+    approximately -- a warm-up of the winding in place of an armature reaction, a viscous
+    friction in place of an iron loss. It is reported as a stand-in and kept out of the
+    netlist; the others stay, and are tested again without it (alone, one may now carry
+    what it did)."""
     if "stand_ins" in log:
         return state
     found: list[tuple[Choice, Any]] = []

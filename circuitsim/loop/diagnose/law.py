@@ -83,14 +83,26 @@ class LawTest:
 
     def why(self) -> str:
         """The bend, in words: each shape with the relative change of the effect where
-        that shape is largest (a sensor's derivatives are named only)."""
-        if self.relative:
-            shapes = " and ".join(f"{t} ({b:+.0%} of its value where that is largest)"
-                                  for t, b in zip(self.terms, self.bends, strict=False))
-        else:
-            shapes = " and ".join(self.terms)
-        return (f"its law does not hold over the record: bent by {shapes}, it explains "
-                f"{self.removed:.0%} of what the model leaves (ΔBIC {self.delta_bic:.0f})")
+        that shape is largest, a cosine and sine of an angle as one ripple once per turn
+        (a sensor's derivatives are named only); shapes that bend it by under 5 % are left
+        out when others do more."""
+        return (f"its law does not hold over the record: bent by {self._shapes()}, it "
+                f"explains {self.removed:.0%} of what the model leaves (ΔBIC "
+                f"{self.delta_bic:.0f})")
+
+    def _shapes(self) -> str:
+        if not self.relative:
+            return " and ".join(self.terms)
+        parts: list[tuple[float, str]] = []
+        turns: dict[str, float] = {}
+        for t, b in zip(self.terms, self.bends, strict=False):
+            if t.startswith(("cos(", "sin(")):
+                turns[t[4:-1]] = float(np.hypot(turns.get(t[4:-1], 0.0), b))
+            else:
+                parts.append((abs(b), f"{t} ({b:+.0%} where it is largest)"))
+        parts += [(a, f"a ripple once per turn of {u} ({a:.0%})") for u, a in turns.items()]
+        big = [p for p in parts if p[0] >= 0.05] or parts
+        return " and ".join(text for _, text in big)
 
     def as_dict(self) -> dict[str, object]:
         return {"delta_bic": self.delta_bic, "gain": self.gain, "terms": list(self.terms), "removed": self.removed, "bends": list(self.bends),
@@ -111,6 +123,8 @@ def _shape(kind: str, u: str, c: str, s: str) -> str:
         return f"abs({u})/{s}"
     if kind == "square":
         return f"({u}/{s})^2"
+    if kind in ("cos", "sin"):  # of an angle, once per turn: no scale
+        return f"{kind}({u})"
     return f"({u} - {c})/{s}"
 
 
@@ -185,8 +199,8 @@ def _bend_columns(setup: Setup, state: ModelState, candidate, own_steps
     steps = [h for _, h in own_steps] + [BEND_STEP] * len(names)
     cols = [{p: (np.asarray(r[p], float) - np.asarray(b[p], float)) / h for p in setup.probes}
             for r, h in zip(moved, steps, strict=True)]
-    words = [{"abs": f"|{u}|", "square": f"{u}^2"}.get(kind, f"{u} about its mean")
-             for u, kind in law.terms]
+    words = [{"abs": f"|{u}|", "square": f"{u}^2", "cos": f"cos({u})", "sin": f"sin({u})"
+              }.get(kind, f"{u} about its mean") for u, kind in law.terms]
     return cols[:len(own_steps)], cols[len(own_steps):], words
 
 
