@@ -253,14 +253,15 @@ def test_cli_report_html_and_written_netlist_reproduce_the_diagnosis(tmp_path, c
 def test_swap_tries_each_set_of_effects_once_and_never_one_effect_twice():
     """The swap step after an acceptance: the rounds' alternatives are combined, but a
     combination holding one effect twice (two patches of one component) or a reordering of
-    a set already tried is not a model to refit."""
+    a set already tried is not a model to refit; a refinement whose effect is swapped out
+    goes with it."""
     from types import SimpleNamespace
 
     from circuitsim.loop.diagnose.context import Choice
     from circuitsim.loop.diagnose.engine import _distinct_combos
 
-    def choice(key: str) -> Choice:
-        return Choice(SimpleNamespace(key=key))
+    def choice(key: str, effect: str | None = None) -> Choice:
+        return Choice(SimpleNamespace(key=key, effect=effect or key, target="M"))
 
     options = [[choice("brush"), choice("coulomb"), choice("viscous")],
                [choice("viscous"), choice("coulomb"), choice("offset")]]
@@ -273,6 +274,11 @@ def test_swap_tries_each_set_of_effects_once_and_never_one_effect_twice():
     assert set(sets) == {frozenset(p) for p in [("brush", "coulomb"), ("brush", "offset"),
                                                  ("coulomb", "viscous"), ("coulomb", "offset"),
                                                  ("viscous", "offset")]}
+    # a brush drop refined by its transition width, with Coulomb friction as its round's
+    # near-equal: swapping the drop out takes the transition with it
+    options = [[choice("brush-drop"), choice("coulomb")], [choice("brush-transition")]]
+    assert [tuple(c.candidate.key for c in combo) for combo in _distinct_combos(options)] == \
+        [("coulomb",)]
 
 
 def test_a_trial_beyond_a_physical_limit_is_rejected_with_its_reason():
@@ -511,7 +517,7 @@ def _law_case(exponent, seed, phi=0.0, size=0.3):
     from types import SimpleNamespace
 
     from circuitsim.loop.diagnose.law import LawTest, _removed
-    from circuitsim.loop.diagnose.regress import added_with_energy
+    from circuitsim.loop.diagnose.regress import added_test
 
     rng = np.random.default_rng(seed)
     n = 6000
@@ -524,10 +530,10 @@ def _law_case(exponent, seed, phi=0.0, size=0.3):
     x = {"x": 1.0}
     own, bend = [{"x": w}], [{"x": w * np.abs(w) / top}, {"x": w * (w / top) ** 2}]
     residual = {"x": noise + error}
-    dbic, gain, energy = added_with_energy(residual, own, bend, x, ["x"], {"x": loss})
+    dbic, gain = added_test(residual, own, bend, x, ["x"])
     setup = SimpleNamespace(probes=("x",), weights=x)
     removed, bends = _removed(setup, residual, own, bend)
-    return LawTest(dbic, gain, ("|w|", "w^2"), removed, bends, energy), error
+    return LawTest(dbic, gain, ("|w|", "w^2"), removed, bends), error
 
 
 def test_a_law_that_bends_over_the_record_is_seen_and_a_right_one_is_not():

@@ -36,7 +36,8 @@ class Law:
         parameters and circuit quantities (for a probe: "gain", "offset" or "delay").
     terms : (driver expression, shape) pairs: the law is tested for a dependence on each
         driver it does not have (shape "abs": on |u|, "square": on u^2, "centred": on u
-        about its mean); for a probe, the shapes the reading may have beyond the law.
+        about its mean, "cos" and "sin": of an angle u, once per turn). Empty for a probe:
+        a sensor's law is bent on its reading, by shapes its kind fixes (``law``).
     """
 
     place: tuple[str, str]
@@ -126,7 +127,7 @@ def _pname(effect: str, target: str, what: str) -> str:
     return f"{effect.replace('-', '_')}_{target.replace('.', '_')}_{what}"
 
 
-def _insert_series(raw: RawNetlist, target: str, name: str, expr: str) -> None:
+def insert_series(raw: RawNetlist, target: str, name: str, expr: str) -> None:
     """Put a behavioural voltage source between the target's pin n and its old node."""
     entry = raw.component_entry(target)
     node = str(entry["n"])
@@ -138,7 +139,8 @@ def _insert_series(raw: RawNetlist, target: str, name: str, expr: str) -> None:
     raw.patch_parts.add(name)
 
 
-def _add(raw: RawNetlist, entry: dict) -> None:
+def add_part(raw: RawNetlist, entry: dict) -> None:
+    """Add a component (a patch's part) to ``raw``."""
     raw.comps.append((entry, SourceLoc(raw.path or "<patch>"), raw.path))
     raw.patch_parts.add(str(entry["name"]))
 
@@ -207,14 +209,14 @@ def _electrical(net: Netlist) -> list[Candidate]:
         p = _pname("series-resistance", t, "R")
         out.append(Candidate("series-resistance", t, {p: (0.0, 0.0, 1e3)}, {},
                              f"a resistance R in series with {t}",
-                             lambda r, t=t, p=p: _insert_series(r, t, f"SR_{t}",
+                             lambda r, t=t, p=p: insert_series(r, t, f"SR_{t}",
                                                                 f"{p}*{t}.i"),
                              steps={p: 1e-3}, law=_current_law(t, f"{p}*{t}.i")))
     for t in _electrical_two_pins(net, kinds={"V"}):
         p = _pname("source-resistance", t, "R")
         out.append(Candidate("source-resistance", t, {p: (0.0, 0.0, 1e3)}, {},
                              f"an internal resistance R of source {t}",
-                             lambda r, t=t, p=p: _insert_series(r, t, f"RS_{t}",
+                             lambda r, t=t, p=p: insert_series(r, t, f"RS_{t}",
                                                                 f"{p}*{t}.i"),
                              steps={p: 1e-3}, law=_current_law(t, f"{p}*{t}.i")))
     return out
@@ -228,7 +230,7 @@ def _converter_effects(net: Netlist, orders: Mapping[str, list[int]]) -> list[Ca
         # current (tens of mA), smooth enough to integrate through a reversal
         out.append(Candidate("brush-drop", t, {p: (0.0, 0.0, 50.0)}, {"i_eps": BRUSH_EPS},
                              f"a brush contact drop Vb*sign(i) in series with {t}",
-                             lambda r, t=t, p=p: _insert_series(
+                             lambda r, t=t, p=p: insert_series(
                                  r, t, f"BD_{t}", f"{p}*tanh({t}.i/{BRUSH_EPS!r})"), steps={p: 1e-2},
                              law=_current_law(t, f"{p}*tanh({t}.i/{BRUSH_EPS!r})")))
         if net.raw is not None and f"BD_{t}" in net.raw.patch_parts:
@@ -239,7 +241,7 @@ def _converter_effects(net: Netlist, orders: Mapping[str, list[int]]) -> list[Ca
             out.append(Candidate(
                 "emf-harmonic", t, {a: (0.0, -10.0, 10.0), b: (0.0, -10.0, 10.0)},
                 {"order": k}, f"an extra back-EMF harmonic of order {k} in {t}",
-                lambda r, t=t, k=k, a=a, b=b, s=shaft: _insert_series(
+                lambda r, t=t, k=k, a=a, b=b, s=shaft: insert_series(
                     r, t, f"EH{k}_{t}",
                     f"{s}.w*({a}*sin({k}*{s}.phi) + {b}*cos({k}*{s}.phi))"),
                 steps={a: 1e-4, b: 1e-4},
@@ -268,6 +270,7 @@ def _brush_transition(t: str, vb: str) -> Candidate:
 
 
 def _set_expr(raw: RawNetlist, name: str, expr: str) -> None:
+    """Rewrite the law of a behavioural component a patch added."""
     raw.component_entry(name)["expr"] = expr
 
 
@@ -280,7 +283,7 @@ def _mechanical(net: Netlist, orders: Mapping[str, list[int]]) -> list[Candidate
         out.append(Candidate(
             "coulomb-friction", node, {p: (0.0, 0.0, 1e4)}, {},
             f"Coulomb friction (or a constant load {unit_f}) on {node}",
-            lambda r, n=node, p=p, rot=rot: _add(r, {
+            lambda r, n=node, p=p, rot=rot: add_part(r, {
                 "name": f"CF_{n}", "type": "friction" if rot else "tfriction",
                 ("shaft" if rot else "flange"): n, ("tau_c" if rot else "f_c"): p,
                 ("w_brk" if rot else "v_brk"): 0.1 if rot else 1e-3}),
@@ -290,7 +293,7 @@ def _mechanical(net: Netlist, orders: Mapping[str, list[int]]) -> list[Candidate
         p = _pname("viscous-friction", node, "b")
         out.append(Candidate(
             "viscous-friction", node, {p: (0.0, 0.0, 1e6)}, {}, f"viscous friction on {node}",
-            lambda r, n=node, p=p, rot=rot: _add(r, {
+            lambda r, n=node, p=p, rot=rot: add_part(r, {
                 "name": f"VF_{n}", "type": "damper" if rot else "tdamper",
                 ("shaft" if rot else "flange"): n, ("b" if rot else "d"): p}),
             steps={p: 1e-6 if rot else 1.0},
@@ -299,7 +302,7 @@ def _mechanical(net: Netlist, orders: Mapping[str, list[int]]) -> list[Candidate
         out.append(Candidate(
             "force-offset", node, {p: (0.0, -1e4, 1e4)}, {},
             f"a constant {unit_f} offset on {node}",
-            lambda r, n=node, p=p, rot=rot: _add(r, {
+            lambda r, n=node, p=p, rot=rot: add_part(r, {
                 "name": f"FO_{n}", "type": "torque" if rot else "force",
                 ("shaft" if rot else "flange"): n, ("T" if rot else "F"): p}),
             steps={p: 1e-4 if rot else 1e-1},
@@ -318,7 +321,7 @@ def _mechanical(net: Netlist, orders: Mapping[str, list[int]]) -> list[Candidate
                     f"an unbalance torque (once per revolution) on {node}" if k == 1 else
                     f"a torque locked to the angle of {node} (cogging or load ripple) of "
                     f"order {k}",
-                    lambda r, n=node, k=k, a=a, b=b: _add(r, {
+                    lambda r, n=node, k=k, a=a, b=b: add_part(r, {
                         "name": f"CG{k}_{n}", "type": "cogging", "shaft": n,
                         "harmonics": [{"order": k, "amplitude": a, "phase": 0},
                                       {"order": k, "amplitude": b, "phase": 1.5707963267948966}]
@@ -329,6 +332,7 @@ def _mechanical(net: Netlist, orders: Mapping[str, list[int]]) -> list[Candidate
 
 
 def _speed(node: str, rot: bool) -> str:
+    """The speed of a body: a shaft's [rad/s] or a flange's [m/s]."""
     return f"{node}.w" if rot else f"{node}.v"
 
 
@@ -345,8 +349,9 @@ def _speed_law(node: str, rot: bool, value: str, turn: bool = False) -> Law:
 
 def always_orders(net: Netlist) -> dict[str, list[int]]:
     """Orders looked for on every shaft whether or not the residual shows their line: order
-    1, a torque once per turn (an unbalance, an eccentric load, an arm's weight), which a
-    shaft that turns less than a few times in the record shows as no line at all."""
+    1, a torque once per turn (an unbalance, an eccentric load, an arm's weight) and, on a
+    converter's shaft, an EMF harmonic once per turn (an eccentric rotor), which a shaft
+    that turns less than a few times in the record shows as no line at all."""
     return {n: [1] for n, d in _mechanical_nodes(net) if d == "rotational"}
 
 
@@ -369,7 +374,7 @@ def _stribeck(node: str) -> list[Candidate]:
         out.append(Candidate(
             "stribeck-friction", node, {s_: (0.0, 0.0, 1e4), ws: (w0, 1e-3, 1e3)}, {},
             f"a breakaway (Stribeck) peak of the friction on {node} at low speed",
-            lambda r, n=node, i=i, law=law: _add(r, {"name": f"SF{i}_{n}", "type": "btorque",
+            lambda r, n=node, i=i, law=law: add_part(r, {"name": f"SF{i}_{n}", "type": "btorque",
                                                      "shaft": n, "expr": law}),
             steps={s_: 1e-4, ws: 1e-2 * w0}, shape=(ws,)))
     return out
@@ -386,7 +391,7 @@ def _warmup(name: str, duration: float) -> list[Candidate]:
             "resistance-drift", name, {rise: (0.0, *DRIFT_RISE),
                                        tau: (f * duration, 1e-6, 1e6)}, {},
             f"{name} warming up to a final value with a time constant",
-            lambda r, n=name, i=i, law=law: _insert_series(r, n, f"RW{i}_{n}", law),
+            lambda r, n=name, i=i, law=law: insert_series(r, n, f"RW{i}_{n}", law),
             steps={rise: 1e-3, tau: 1e-2 * f * duration}, shape=(tau,),
             law=_current_law(name, law),
             limit=lambda v, n=name, rise=rise, tau=tau: _drift_rate(n, v[rise] / v[tau])))
@@ -535,9 +540,9 @@ def _probe_delay(raw: RawNetlist, probe: str, tau: str, unit: str) -> None:
     node_in, node_out = f"{tau}_in", f"{tau}_out"
     # the probe's value as a voltage: one volt per unit of the probe
     volts = f"({text})*1[V]" + (f"/1[{unit}]" if unit not in ("", "1") else "")
-    _add(raw, {"name": f"SDV_{tau}", "type": "BV", "p": node_in, "n": "gnd", "expr": volts})
-    _add(raw, {"name": f"SDR_{tau}", "type": "R", "p": node_in, "n": node_out, "R": 1.0})
-    _add(raw, {"name": f"SDC_{tau}", "type": "C", "p": node_out, "n": "gnd",
+    add_part(raw, {"name": f"SDV_{tau}", "type": "BV", "p": node_in, "n": "gnd", "expr": volts})
+    add_part(raw, {"name": f"SDR_{tau}", "type": "R", "p": node_in, "n": node_out, "R": 1.0})
+    add_part(raw, {"name": f"SDC_{tau}", "type": "C", "p": node_out, "n": "gnd",
                "C": f"{tau}/2"})
     back = "" if unit in ("", "1") else f"*1[{unit}]"
     raw.probes[probe] = (f"2*{node_out}.v/1[V]{back} - ({text})", loc)
@@ -547,8 +552,8 @@ def _probe_patch(raw: RawNetlist, probe: str, param: str, template: str) -> None
     """Rewrite a probe through a sensor law. A probe reads circuit quantities only, so the
     parameter enters as the voltage of its own source on a node of its own."""
     node = f"{param}_node"
-    _add(raw, {"name": f"S_{param}", "type": "V", "p": node, "n": "gnd", "V": param})
-    _add(raw, {"name": f"SL_{param}", "type": "R", "p": node, "n": "gnd", "R": 1.0})
+    add_part(raw, {"name": f"S_{param}", "type": "V", "p": node, "n": "gnd", "V": param})
+    add_part(raw, {"name": f"SL_{param}", "type": "R", "p": node, "n": "gnd", "R": 1.0})
     text, loc = raw.probes[probe]
     raw.probes[probe] = (template.format(v=f"{node}.v", x=text), loc)
 

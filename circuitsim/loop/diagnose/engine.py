@@ -483,12 +483,15 @@ def _swap(setup: Setup, state: ModelState, log: dict[str, Any]) -> ModelState:
             log["indistinct"].append(f"{name} and {other} explain this record almost equally "
                                      f"well (ΔBIC {gains[name]:.1f} vs {g:.1f}): the data "
                                      f"cannot tell them apart")
+    kept = {c.candidate.key for c in best.chosen}
     for old in state.chosen:
-        if old.candidate.key not in {c.candidate.key for c in best.chosen}:
+        if old.candidate.key not in kept:
+            refines = NEEDS_BASE.get(old.candidate.effect)
             log["rejected"].append({"effect": old.candidate.effect,
                                     "target": old.candidate.target,
-                                    "reason": "replaced by a near-equal alternative once the "
-                                              "later effects were in place"})
+                                    "reason": f"its {refines} was replaced" if refines else
+                                    "replaced by a near-equal alternative once the later "
+                                    "effects were in place"})
     for c in best.chosen:
         if c.candidate.key not in log["trials"]:
             log["trials"][c.candidate.key] = next(
@@ -501,12 +504,17 @@ def _swap(setup: Setup, state: ModelState, log: dict[str, Any]) -> ModelState:
 def _distinct_combos(options: list[list[Choice]]) -> list[tuple[Choice, ...]]:
     """The combinations of ``options`` other than the model as it stands (the first), each
     set of effects once: one effect twice would patch the same component twice, and two
-    orders of the same set are the same model."""
+    orders of the same set are the same model. A refinement whose effect a combination swaps
+    out goes with it (``_with_bases``): the combination is the model it refits."""
     seen = {frozenset(c.candidate.key for c in next(itertools.product(*options)))}
     combos = []
     for combo in itertools.product(*options):
+        keys = [c.candidate.key for c in combo]
+        if len(set(keys)) < len(keys):
+            continue
+        combo = tuple(_with_bases(list(combo)))
         keys = frozenset(c.candidate.key for c in combo)
-        if len(keys) == len(combo) and keys not in seen:
+        if keys not in seen:
             seen.add(keys)
             combos.append(combo)
     return combos
@@ -543,13 +551,17 @@ def _backward(setup: Setup, state: ModelState, log: dict[str, Any]) -> ModelStat
         reduced = _without(setup, state, [c for j, c in enumerate(state.chosen) if j != i])
         if reduced is None:
             continue
-        verdict = judge(setup, reduced, Trial((choice.candidate,), state.fit))
+        # what goes with it (a refinement of it) is judged with it: its parameters count too
+        gone = [c.candidate for c in state.chosen if c not in reduced.chosen]
+        verdict = judge(setup, reduced, Trial(tuple(gone), state.fit))
         if verdict.delta_bic >= -BIC_MARGIN:
             setup.log(f"dropped {choice.candidate.key}: with the later effects in place it "
                       f"is no longer needed ({verdict.note})")
-            log["rejected"].append({"effect": choice.candidate.effect,
-                                    "target": choice.candidate.target,
-                                    "reason": "dropped by the backward step: " + verdict.note})
+            for c in gone:
+                log["rejected"].append({
+                    "effect": c.effect, "target": c.target,
+                    "reason": "dropped by the backward step: " + verdict.note if c is
+                    choice.candidate else f"dropped with the {choice.candidate.effect} it refines"})
             return _backward(setup, reduced, log)
     return state
 
@@ -635,6 +647,11 @@ def _unstable(setup: Setup, state0: ModelState, state: ModelState, log: dict[str
             setup.log("the model without the unstable effect could not be refitted; it stays")
             break
         found += unstable
+        for c in state.chosen:  # a refinement goes with the effect it refines
+            if c not in reduced.chosen and all(c is not u for u, _ in unstable):
+                log["rejected"].append({"effect": c.candidate.effect,
+                                        "target": c.candidate.target,
+                                        "reason": "dropped with the effect it refines"})
         state = reduced
     if not found:
         return state

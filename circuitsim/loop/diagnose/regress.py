@@ -22,44 +22,35 @@ def added_test(residuals: Mapping[str, np.ndarray],
     ``split`` added to ``columns`` (each, per probe, a change of the model's output [probe
     unit]) against ``residuals`` (measured - model). The prewhitening filter is learnt on the
     richer regression's residual, as every decision's is (``noise``)."""
-    dbic, gain, _ = added_with_energy(residuals, columns, split, weights, probes)
-    return dbic, gain
-
-
-def added_with_energy(residuals: Mapping[str, np.ndarray],
-                      columns: Sequence[Mapping[str, np.ndarray]],
-                      split: Sequence[Mapping[str, np.ndarray]], weights: Mapping[str, float],
-                      probes: Sequence[str], series: Mapping[str, np.ndarray] | None = None
-                      ) -> tuple[float, float, float]:
-    """``added_test``, and the energy of ``series`` (per probe [probe unit]; an effect's
-    imprint) in the same units as the gain (0 without it)."""
     n = len(np.asarray(residuals[probes[0]]))
     whole = list(columns)
     if not split:
-        return 0.0, 0.0, 0.0
+        return 0.0, 0.0
     raw = _stack(residuals, probes, weights)
-    x = np.column_stack([_stack(c, probes, weights) for c in whole + split])
+    x, _ = unit_columns(np.column_stack([_stack(c, probes, weights) for c in whole + split]))
     beta, *_ = np.linalg.lstsq(x, raw, rcond=None)
     left = raw - x @ beta
     whiten = whiteners_of({p: left[k * n:(k + 1) * n] for k, p in enumerate(probes)}, probes)
 
-    def stack(s: Mapping[str, np.ndarray]) -> np.ndarray:
-        return _stack(s, probes, weights, whiten)
+    def stack(series: Mapping[str, np.ndarray]) -> np.ndarray:
+        return _stack(series, probes, weights, whiten)
 
     r = stack(residuals)
     sizes = [whiten[p].apply(np.zeros(n)).size for p in probes]
     old = _probe_sse(r, np.column_stack([stack(c) for c in whole]), probes, sizes)
     new = _probe_sse(r, np.column_stack([stack(c) for c in whole + split]), probes, sizes)
-    var = {p: max(new[p] / m, 1e-300) for p, m in zip(probes, sizes, strict=True)}
-    gain = sum((old[p] - new[p]) / var[p] for p in probes)
-    energy = 0.0
-    if series is not None:
-        e = stack(series)
-        at = 0
-        for p, m in zip(probes, sizes, strict=True):
-            energy += float(e[at:at + m] @ e[at:at + m]) / var[p]
-            at += m
-    return delta_bic(new, old, n, len(split), probes), max(gain, 0.0), energy
+    gain = sum((old[p] - new[p]) / max(new[p] / m, 1e-300) for p, m in zip(probes, sizes,
+                                                                           strict=True))
+    return delta_bic(new, old, n, len(split), probes), max(gain, 0.0)
+
+
+def unit_columns(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(``x`` with each column scaled to unit norm, the norms): a least squares on columns
+    whose scales differ by many orders (a reading's third derivative beside its gain) then
+    loses no digits; an all-zero column keeps norm 1."""
+    norms = np.linalg.norm(x, axis=0)
+    norms = np.where(norms > 0.0, norms, 1.0)
+    return x / norms, norms
 
 
 def _stack(series: Mapping[str, np.ndarray], probes: Sequence[str],
@@ -73,8 +64,9 @@ def _stack(series: Mapping[str, np.ndarray], probes: Sequence[str],
 def _probe_sse(r: np.ndarray, x: np.ndarray, probes: Sequence[str], sizes: Sequence[int]
                ) -> dict[str, float]:
     """Each probe's sum of squares of ``r`` less its least-squares fit on ``x``."""
-    beta, *_ = np.linalg.lstsq(x, r, rcond=None)
-    e = r - x @ beta
+    scaled, _ = unit_columns(x)
+    beta, *_ = np.linalg.lstsq(scaled, r, rcond=None)
+    e = r - scaled @ beta
     out, i = {}, 0
     for p, m in zip(probes, sizes, strict=True):
         out[p] = float(e[i:i + m] @ e[i:i + m])

@@ -24,6 +24,10 @@ each part of the record's spectrum its values differ. The second split gives the
 their own copy in each of ``BANDS`` frequency bands (cosine-transform bands, each holding an
 equal share of the effect's own sensitivity energy, so that every copy has as much to fit), and
 is judged by the same rule.
+
+And over the operating range: a physical effect's law holds at every current, speed and
+angle the record visits. ``law`` lets the law bend there and judges the bend by the share of
+what the final model leaves that it removes; its verdict travels with this one (``bent``).
 """
 
 from __future__ import annotations
@@ -36,7 +40,7 @@ from scipy import fft
 
 from circuitsim.loop.diagnose.context import ModelState, Setup, compile_raw, simulate_many
 from circuitsim.loop.diagnose.decide import BIC_MARGIN
-from circuitsim.loop.diagnose.law import LawTest, law_test
+from circuitsim.loop.diagnose.law import LawTest, bend_of, law_test
 from circuitsim.loop.diagnose.regress import added_test
 
 SEGMENTS = 4  # equal pieces of the record, each with its own copy of the parameters
@@ -175,9 +179,12 @@ def stability(setup: Setup, state: ModelState, candidate, own: float) -> Stabili
     units]."""
     if setup.n < SEGMENTS * MIN_SEGMENT or not candidate.free:
         return None
-    columns = sensitivities(setup, state, candidate)
+    # a circuit's law is bent in a run that gives the effect's own columns too
+    bend = bend_of(setup, state, candidate, steps_of(state, candidate))
+    columns = bend.own if bend is not None and bend.own is not None else \
+        sensitivities(setup, state, candidate)
     if columns is None:
         return None
     args = (state.fit.residuals, columns, setup.weights, setup.probes)
-    bend = law_test(setup, state, candidate, columns, steps_of(state, candidate))
-    return Stability(*split_test(*args), own, *band_test(*args), bend)
+    verdict = law_test(setup, state, columns, bend) if bend is not None else None
+    return Stability(*split_test(*args), own, *band_test(*args), verdict)
