@@ -24,45 +24,21 @@ import time
 import warnings
 from pathlib import Path
 
-import numpy as np
-
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
+import crosscheck
 import simulators_h as sh
 from make_records_h import record_specs, scale_marginal
 
 NETLISTS = {"fast": HERE / "netlists" / "motor_h.yaml",
             "slow": HERE / "netlists" / "motor_h_slow.yaml"}
-UNITS = {"current": "A", "speed": "rad/s", "load_speed": "rad/s"}
 TARGET = 1e-5
-#: the truth's physical names -> the catalog's parameter suffixes
-SUFFIX = {"gain": "g", "offset": "o", "delay": "tau"}
 
 
 def patched(net, regime: str, effects: list[dict]):
-    """The declared netlist's raw form with each truth effect's catalog patch applied, and
-    the patch parameters' values."""
-    from circuitsim.loop.effects import candidates
-
-    orders: dict[str, list[int]] = {}
-    for e in effects:
-        if "order" in e:
-            shaft = "rotor" if e["effect"] == "emf-harmonic" else e["target"]
-            orders.setdefault(shaft, []).append(int(e["order"]))
-    pool = candidates(net, orders=orders, probes={p: UNITS[p] for p in sh.PROBES[regime]},
-                      duration=sh.REGIMES[regime][1])
-    raw, values = net.raw, {}
-    for e in effects:
-        keys = [SUFFIX.get(k, k) for k in e["expected"]]
-        cand = next(c for c in pool if c.effect == e["effect"] and c.target == e["target"]
-                    and c.fixed.get("order", e.get("order")) == e.get("order")
-                    and all(any(n.endswith("_" + k) for n in c.free) for k in keys))
-        raw = cand.apply(raw)
-        for k, v in e["expected"].items():
-            name = next(n for n in cand.free if n.endswith("_" + SUFFIX.get(k, k)))
-            values[name] = float(v) - 1.0 if k == "gain" else float(v)
-    return raw, values
+    """The declared netlist with the truth's catalog patches (``catalog_patch``)."""
+    return crosscheck.truth_patch(net, effects, sh.PROBES[regime], sh.REGIMES[regime][1])
 
 
 # ---------------------------------------------------------------------- outside laws
@@ -70,13 +46,13 @@ def patched(net, regime: str, effects: list[dict]):
 def clutch(raw, fx):
     """The gear drives a wheel ``gw`` (inertia Jw, taken from the declared Js); a
     ``stick_clutch`` passes its torque to the screw."""
-    from circuitsim.loop.effects import _add
+    from circuitsim.loop.effects import add_part
 
     fn, mu, mu_s, jw = fx["clutch"]
     raw.component_entry("Gear")["b"] = "gw"
     raw.component_entry("Js")["J"] = sh.MOTOR_H["Js"] - jw
-    _add(raw, {"name": "Jw", "type": "inertia", "shaft": "gw", "J": jw})
-    _add(raw, {"name": "CL", "type": "stick_clutch", "a": "gw", "b": "screw", "fn": fn,
+    add_part(raw, {"name": "Jw", "type": "inertia", "shaft": "gw", "J": jw})
+    add_part(raw, {"name": "CL", "type": "stick_clutch", "a": "gw", "b": "screw", "fn": fn,
                "mu": mu, "mu_s": mu_s})
 
 
@@ -86,32 +62,32 @@ def xtalk(raw, fx):
 
 
 def nut(raw, fx):
-    from circuitsim.loop.effects import _add
+    from circuitsim.loop.effects import add_part
 
     order, amp, ph = fx["nut"]
-    _add(raw, {"name": "NUT", "type": "btorque", "shaft": "screw",
+    add_part(raw, {"name": "NUT", "type": "btorque", "shaft": "screw",
                "expr": f"{amp!r}[N*m]*sin({order!r}*screw.phi + {ph!r})"})
 
 
 def spring(raw, fx):
-    from circuitsim.loop.effects import _add
+    from circuitsim.loop.effects import add_part
 
     t0, ks = fx["spring"]
-    _add(raw, {"name": "RSP", "type": "btorque", "shaft": "screw",
+    add_part(raw, {"name": "RSP", "type": "btorque", "shaft": "screw",
                "expr": f"-({t0!r}[N*m] + {ks!r}[N*m/rad]*screw.phi)"})
 
 
 def shorted(raw, fx):
     """The shorted loop: a behavioural EMF ks w cos(th + phase) driving an inductor Ls with
     its resistance Rs; the rotor receives -ks cos(th + phase) is."""
-    from circuitsim.loop.effects import _add
+    from circuitsim.loop.effects import add_part
 
     ks, rs, ls, ph = fx["shorted"]
     flux = f"{ks!r}*cos(rotor.phi + {ph!r})"
-    _add(raw, {"name": "SHE", "type": "BV", "p": "sh1", "n": "gnd",
+    add_part(raw, {"name": "SHE", "type": "BV", "p": "sh1", "n": "gnd",
                "expr": f"{flux}*rotor.w*1[V*s/rad]"})
-    _add(raw, {"name": "SHL", "type": "L", "p": "sh1", "n": "gnd", "L": ls, "R": rs})
-    _add(raw, {"name": "SHT", "type": "btorque", "shaft": "rotor",
+    add_part(raw, {"name": "SHL", "type": "L", "p": "sh1", "n": "gnd", "L": ls, "R": rs})
+    add_part(raw, {"name": "SHT", "type": "btorque", "shaft": "rotor",
                "expr": f"-{flux}*SHL.i*1[N*m/A]"})
 
 
@@ -122,31 +98,9 @@ OUTSIDE_LAWS = {"clutch": clutch, "xtalk": xtalk, "nut": nut, "spring": spring,
 # ---------------------------------------------------------------------- comparison
 
 def compare(cs, regime: str, label: str, fx: dict, raw=None, values=None) -> float:
-    from circuitsim.netlist.load import build
-
-    t = sh.grid(regime)
-    fx = dict(fx)
-    p = {**sh.MOTOR_H, **fx.pop("p", {})}
-    ref = sh.simulate(regime, t, fx, p)
-    base = sh.simulate(regime, t) if (fx or p != sh.MOTOR_H) else None
-    net = cs.load(NETLISTS[regime]) if raw is None else build(raw)
-    t0 = time.perf_counter()
-    res = cs.compile(net).simulate(stop=float(t[-1]), t_eval=t, params=values or None,
-                                   rtol=1e-10, atol=1e-12)
-    t_cs = time.perf_counter() - t0
-    worst = 0.0
-    for pr in sh.PROBES[regime]:
-        a, b = np.asarray(ref[pr]), np.asarray(res[pr])
-        rng = float(np.ptp(b))
-        mx = float(np.max(np.abs(a - b)) / rng)
-        rms = float(np.sqrt(np.mean((a - b) ** 2)) / np.std(b))
-        worst = max(worst, mx)
-        size = "" if base is None else \
-            f"; effect {np.max(np.abs(a - base[pr])) / rng:.1e} of range"
-        print(f"motor H {regime:4s} {label:46s} {pr:10s}: max |diff|/range {mx:.1e}, "
-              f"rms/std {rms:.1e} (range {rng:.4g}{size}; circuitsim {t_cs:.1f} s)",
-              flush=True)
-    return worst
+    """Motor H's scipy model against circuitsim (``crosscheck.compare``)."""
+    return crosscheck.compare(cs, sh, "H", sh.MOTOR_H, NETLISTS, regime,
+                              label, fx, raw, values)
 
 
 def main(argv=None) -> int:

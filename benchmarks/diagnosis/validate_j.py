@@ -20,57 +20,32 @@ import math
 import os
 import sys
 import tempfile
-import time
 import warnings
 from pathlib import Path
-
-import numpy as np
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
+import crosscheck
 import simulators_j as sj
 from make_records_j import record_specs, scale_marginal
 
 NETLISTS = {"fast": HERE / "netlists" / "motor_j.yaml",
             "slow": HERE / "netlists" / "motor_j_slow.yaml"}
-UNITS = {"current": "A", "speed": "rad/s", "load_speed": "rad/s"}
 TARGET = 1e-5
-#: the truth's physical names -> the catalog's parameter suffixes
-SUFFIX = {"gain": "g", "offset": "o", "delay": "tau"}
 
 
 def patched(net, regime: str, effects: list[dict]):
-    """The declared netlist's raw form with each truth effect's catalog patch applied, and
-    the patch parameters' values."""
-    from circuitsim.loop.effects import candidates
-
-    orders: dict[str, list[int]] = {}
-    for e in effects:
-        if "order" in e:
-            shaft = "rotor" if e["effect"] == "emf-harmonic" else e["target"]
-            orders.setdefault(shaft, []).append(int(e["order"]))
-    pool = candidates(net, orders=orders, probes={p: UNITS[p] for p in sj.PROBES[regime]},
-                      duration=sj.REGIMES[regime][1])
-    raw, values = net.raw, {}
-    for e in effects:
-        keys = [SUFFIX.get(k, k) for k in e["expected"]]
-        cand = next(c for c in pool if c.effect == e["effect"] and c.target == e["target"]
-                    and c.fixed.get("order", e.get("order")) == e.get("order")
-                    and all(any(n.endswith("_" + k) for n in c.free) for k in keys))
-        raw = cand.apply(raw)
-        for k, v in e["expected"].items():
-            name = next(n for n in cand.free if n.endswith("_" + SUFFIX.get(k, k)))
-            values[name] = float(v) - 1.0 if k == "gain" else float(v)
-    return raw, values
+    """The declared netlist with the truth's catalog patches (``catalog_patch``)."""
+    return crosscheck.truth_patch(net, effects, sj.PROBES[regime], sj.REGIMES[regime][1])
 
 
 # ---------------------------------------------------------------------- outside laws
 
 def _add(raw, entry):
-    from circuitsim.loop.effects import _add as add
+    from circuitsim.loop.effects import add_part
 
-    add(raw, entry)
+    add_part(raw, entry)
 
 
 def kinerr(raw, fx):
@@ -108,7 +83,7 @@ def brake(raw, fx):
 def demag(raw, fx):
     """The peak current m as the voltage of a 1 F capacitor charged by G relu(|i| - m); the
     flux lost, D(m), as a voltage -k D w in series with M and a torque -k D i on the rotor."""
-    from circuitsim.loop.effects import _insert_series
+    from circuitsim.loop.effects import insert_series
 
     delta, i1, iw, g = fx["demag"]
     k = sj.MOTOR_J["k"]
@@ -117,7 +92,7 @@ def demag(raw, fx):
                "expr": f"{g!r}*0.5*((sqrt(Ra.i^2 + 1e-6) - pk.v) + "
                        f"sqrt((sqrt(Ra.i^2 + 1e-6) - pk.v)^2 + 1e-6))"})
     loss = f"{delta!r}*(1 - exp(-(max(pk.v - {i1!r}, 0)/{iw!r})^2))"
-    _insert_series(raw, "M", "DMV", f"-{k!r}*{loss}*rotor.w")
+    insert_series(raw, "M", "DMV", f"-{k!r}*{loss}*rotor.w")
     _add(raw, {"name": "DMT", "type": "btorque", "shaft": "rotor",
                "expr": f"-{k!r}[N*m/A]*{loss}*Ra.i"})
 
@@ -128,29 +103,9 @@ OUTSIDE_LAWS = {"kinerr": kinerr, "harness": harness, "brake": brake, "demag": d
 # ---------------------------------------------------------------------- comparison
 
 def compare(cs, regime: str, label: str, fx: dict, raw=None, values=None) -> float:
-    from circuitsim.netlist.load import build
-
-    t = sj.grid(regime)
-    fx = dict(fx)
-    p = {**sj.MOTOR_J, **fx.pop("p", {})}
-    ref = sj.simulate(regime, t, fx, p)
-    base = sj.simulate(regime, t) if (fx or p != sj.MOTOR_J) else None
-    net = cs.load(NETLISTS[regime]) if raw is None else build(raw)
-    t0 = time.perf_counter()
-    res = cs.compile(net).simulate(stop=float(t[-1]), t_eval=t, params=values or None,
-                                   rtol=1e-10, atol=1e-12)
-    t_cs = time.perf_counter() - t0
-    worst = 0.0
-    for pr in sj.PROBES[regime]:
-        a, b = np.asarray(ref[pr]), np.asarray(res[pr])
-        rng = float(np.ptp(b))
-        mx = float(np.max(np.abs(a - b)) / rng)
-        worst = max(worst, mx)
-        size = "" if base is None else \
-            f"; effect {np.max(np.abs(a - base[pr])) / rng:.1e} of range"
-        print(f"motor J {regime:4s} {label:48s} {pr:10s}: max |diff|/range {mx:.1e} "
-              f"(range {rng:.4g}{size}; circuitsim {t_cs:.1f} s)", flush=True)
-    return worst
+    """Motor J's scipy model against circuitsim (``crosscheck.compare``)."""
+    return crosscheck.compare(cs, sj, "J", sj.MOTOR_J, NETLISTS, regime,
+                              label, fx, raw, values)
 
 
 def main() -> int:

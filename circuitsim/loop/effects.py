@@ -207,18 +207,18 @@ def _electrical(net: Netlist) -> list[Candidate]:
     out: list[Candidate] = []
     for t in _electrical_two_pins(net, exclude={"V", "I"}):
         p = _pname("series-resistance", t, "R")
+        v = f"{p}*{t}.i"
         out.append(Candidate("series-resistance", t, {p: (0.0, 0.0, 1e3)}, {},
                              f"a resistance R in series with {t}",
-                             lambda r, t=t, p=p: insert_series(r, t, f"SR_{t}",
-                                                                f"{p}*{t}.i"),
-                             steps={p: 1e-3}, law=_current_law(t, f"{p}*{t}.i")))
+                             lambda r, t=t, v=v: insert_series(r, t, f"SR_{t}", v),
+                             steps={p: 1e-3}, law=_current_law(t, v)))
     for t in _electrical_two_pins(net, kinds={"V"}):
         p = _pname("source-resistance", t, "R")
+        v = f"{p}*{t}.i"
         out.append(Candidate("source-resistance", t, {p: (0.0, 0.0, 1e3)}, {},
                              f"an internal resistance R of source {t}",
-                             lambda r, t=t, p=p: insert_series(r, t, f"RS_{t}",
-                                                                f"{p}*{t}.i"),
-                             steps={p: 1e-3}, law=_current_law(t, f"{p}*{t}.i")))
+                             lambda r, t=t, v=v: insert_series(r, t, f"RS_{t}", v),
+                             steps={p: 1e-3}, law=_current_law(t, v)))
     return out
 
 
@@ -228,25 +228,23 @@ def _converter_effects(net: Netlist, orders: Mapping[str, list[int]]) -> list[Ca
         p = _pname("brush-drop", t, "Vb")
         # the sign of the current, smoothed over 1 mA: sharp against a small motor's no-load
         # current (tens of mA), smooth enough to integrate through a reversal
+        v = f"{p}*tanh({t}.i/{BRUSH_EPS!r})"
         out.append(Candidate("brush-drop", t, {p: (0.0, 0.0, 50.0)}, {"i_eps": BRUSH_EPS},
                              f"a brush contact drop Vb*sign(i) in series with {t}",
-                             lambda r, t=t, p=p: insert_series(
-                                 r, t, f"BD_{t}", f"{p}*tanh({t}.i/{BRUSH_EPS!r})"), steps={p: 1e-2},
-                             law=_current_law(t, f"{p}*tanh({t}.i/{BRUSH_EPS!r})")))
+                             lambda r, t=t, v=v: insert_series(r, t, f"BD_{t}", v),
+                             steps={p: 1e-2}, law=_current_law(t, v)))
         if net.raw is not None and f"BD_{t}" in net.raw.patch_parts:
             out.append(_brush_transition(t, p))
         for k in orders.get(shaft, []):
             a = _pname("emf-harmonic", f"{t}_{k}", "a")
             b = _pname("emf-harmonic", f"{t}_{k}", "b")
+            v = f"{shaft}.w*({a}*sin({k}*{shaft}.phi) + {b}*cos({k}*{shaft}.phi))"
             out.append(Candidate(
                 "emf-harmonic", t, {a: (0.0, -10.0, 10.0), b: (0.0, -10.0, 10.0)},
                 {"order": k}, f"an extra back-EMF harmonic of order {k} in {t}",
-                lambda r, t=t, k=k, a=a, b=b, s=shaft: insert_series(
-                    r, t, f"EH{k}_{t}",
-                    f"{s}.w*({a}*sin({k}*{s}.phi) + {b}*cos({k}*{s}.phi))"),
+                lambda r, t=t, k=k, v=v: insert_series(r, t, f"EH{k}_{t}", v),
                 steps={a: 1e-4, b: 1e-4},
-                law=Law(("series", t), f"{shaft}.w*({a}*sin({k}*{shaft}.phi) + "
-                        f"{b}*cos({k}*{shaft}.phi))", ((f"{t}.i", "abs"), (f"{shaft}.w", "abs")))))
+                law=Law(("series", t), v, ((f"{t}.i", "abs"), (f"{shaft}.w", "abs")))))
     return out
 
 

@@ -558,10 +558,11 @@ def _backward(setup: Setup, state: ModelState, log: dict[str, Any]) -> ModelStat
             setup.log(f"dropped {choice.candidate.key}: with the later effects in place it "
                       f"is no longer needed ({verdict.note})")
             for c in gone:
-                log["rejected"].append({
-                    "effect": c.effect, "target": c.target,
-                    "reason": "dropped by the backward step: " + verdict.note if c is
-                    choice.candidate else f"dropped with the {choice.candidate.effect} it refines"})
+                reason = ("dropped by the backward step: " + verdict.note
+                          if c is choice.candidate else
+                          f"dropped with the {choice.candidate.effect} it refines")
+                log["rejected"].append({"effect": c.effect, "target": c.target,
+                                        "reason": reason})
             return _backward(setup, reduced, log)
     return state
 
@@ -694,8 +695,14 @@ def _base_raw(state: ModelState, chosen: list[Choice]):
     return raw
 
 
-#: refinements that rewrite the patch of the effect they refine: without it they are void
-NEEDS_BASE = {"brush-transition": "brush-drop"}
+#: refinement -> (the effect it refines, which of the two names the merged effect, whether
+#: it rewrites that effect's patch and is void without it). A breakaway peak adds a torque
+#: of its own over a friction declared or accepted; a brush drop's transition width rewrites
+#: the accepted drop's law.
+REFINES = {"stribeck-friction": ("coulomb-friction", "stribeck-friction", False),
+           "brush-transition": ("brush-drop", "brush-drop", True)}
+#: refinements that are void without the effect they refine: refinement -> that effect
+NEEDS_BASE = {fine: base for fine, (base, _, needs) in REFINES.items() if needs}
 
 
 def _with_bases(chosen: list[Choice]) -> list[Choice]:
@@ -708,10 +715,6 @@ def _with_bases(chosen: list[Choice]) -> list[Choice]:
 
 # ------------------------------------------------------------------------------- report
 
-#: refinement -> the effect it refines, and which of the two names the merged effect
-REFINES = {"stribeck-friction": ("coulomb-friction", "stribeck-friction"),
-           "brush-transition": ("brush-drop", "brush-drop")}
-
 
 def _merge_refinements(accepted: list[Accepted]) -> list[Accepted]:
     """A refinement and the effect it refines are one effect, with the parameters of both: a
@@ -719,7 +722,7 @@ def _merge_refinements(accepted: list[Accepted]) -> list[Accepted]:
     transition width is part of the brush drop."""
     out = list(accepted)
     for fine in [a for a in out if a.effect in REFINES]:
-        kind, name = REFINES[fine.effect]
+        kind, name, _ = REFINES[fine.effect]
         base = next((a for a in out if a.effect == kind and a.target == fine.target), None)
         if base is None:
             continue

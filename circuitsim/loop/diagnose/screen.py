@@ -71,9 +71,10 @@ def propose(setup: Setup, state: ModelState, orders: Mapping[str, list[int]],
     probes = {p: units[p] for p in setup.probes if p in units}
     t = np.asarray(setup.record.t, float)
     net = build(state.raw)
-    orders = {n: [*orders.get(n, []), *(k for k in extra if k not in orders.get(n, []))]
-              for n, extra in {**{n: [] for n in orders}, **effects.always_orders(net)}.items()}
-    for c in effects.candidates(net, orders, probes or setup.probes,
+    wanted = {n: list(ks) for n, ks in orders.items()}  # the residual's, then every shaft's
+    for n, ks in effects.always_orders(net).items():
+        wanted.setdefault(n, []).extend(k for k in ks if k not in wanted[n])
+    for c in effects.candidates(net, wanted, probes or setup.probes,
                                 duration=float(t[-1] - t[0])):
         if c.key in tried or c.kind in chosen or (c.retunes and _freed(state.raw, c, setup)):
             continue

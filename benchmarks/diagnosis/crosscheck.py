@@ -1,0 +1,80 @@
+"""What the validate_g/h/j.py cross-checks share: a truth's catalog effects as the catalog's
+own netlist patches (the declared netlist carrying each effect's patch at the truth's values
+must give what the scipy simulator gives with the effect written out by hand), and the
+comparison of a scipy model with circuitsim on the record grid. Each motor's simulator stays
+its own, written independently; only this plumbing is shared."""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+UNITS = {"current": "A", "speed": "rad/s", "load_speed": "rad/s"}
+#: the truth's physical names -> the catalog's parameter suffixes
+SUFFIX = {"gain": "g", "offset": "o", "delay": "tau"}
+
+
+def truth_patch(net: Any, effects: list[dict], probes: Sequence[str], duration: float
+                ) -> tuple[Any, dict[str, float]]:
+    """The declared netlist's raw form with each truth effect's catalog patch applied, and
+    the patch parameters' values [SI]; ``probes``: the record's probes, ``duration``: its
+    length [s] (a warm-up's time constant starts from it)."""
+    from circuitsim.loop.effects import candidates
+
+    orders: dict[str, list[int]] = {}
+    for e in effects:
+        if "order" in e:
+            shaft = "rotor" if e["effect"] == "emf-harmonic" else e["target"]
+            orders.setdefault(shaft, []).append(int(e["order"]))
+    pool = candidates(net, orders=orders, probes={p: UNITS[p] for p in probes},
+                      duration=duration)
+    raw, values = net.raw, {}
+    for e in effects:
+        keys = [SUFFIX.get(k, k) for k in e["expected"]]
+        cand = next(c for c in pool if c.effect == e["effect"] and c.target == e["target"]
+                    and c.fixed.get("order", e.get("order")) == e.get("order")
+                    and all(any(n.endswith("_" + k) for n in c.free) for k in keys))
+        raw = cand.apply(raw)
+        for k, v in e["expected"].items():
+            name = next(n for n in cand.free if n.endswith("_" + SUFFIX.get(k, k)))
+            values[name] = float(v) - 1.0 if k == "gain" else float(v)
+    return raw, values
+
+
+def compare(cs: Any, sim: Any, motor: str, nominal: Mapping[str, float],
+            netlists: Mapping[str, Path], regime: str, label: str, fx: dict, raw: Any = None,
+            values: Mapping[str, float] | None = None) -> float:
+    """The largest |scipy - circuitsim| over a probe's range on the record grid, printed per
+    probe with the rms difference and the effect's own size. ``sim``: the motor's simulator
+    module (``grid``, ``simulate``, ``PROBES``), ``nominal``: its declared parameters,
+    ``fx``: the effects written out for it (``"p"``: parameters changed), ``raw`` and
+    ``values``: the netlist to run instead of the declared one, and its parameters."""
+    from circuitsim.netlist.load import build
+
+    t = sim.grid(regime)
+    fx = dict(fx)
+    p = {**nominal, **fx.pop("p", {})}
+    ref = sim.simulate(regime, t, fx, p)
+    base = sim.simulate(regime, t) if (fx or p != dict(nominal)) else None
+    net = cs.load(netlists[regime]) if raw is None else build(raw)
+    t0 = time.perf_counter()
+    res = cs.compile(net).simulate(stop=float(t[-1]), t_eval=t, params=values or None,
+                                   rtol=1e-10, atol=1e-12)
+    t_cs = time.perf_counter() - t0
+    worst = 0.0
+    for pr in sim.PROBES[regime]:
+        a, b = np.asarray(ref[pr]), np.asarray(res[pr])
+        rng = float(np.ptp(b))
+        mx = float(np.max(np.abs(a - b)) / rng)
+        rms = float(np.sqrt(np.mean((a - b) ** 2)) / np.std(b))
+        worst = max(worst, mx)
+        size = "" if base is None else \
+            f"; effect {np.max(np.abs(a - base[pr])) / rng:.1e} of range"
+        print(f"motor {motor} {regime:4s} {label:52s} {pr:10s}: max |diff|/range {mx:.1e}, "
+              f"rms/std {rms:.1e} (range {rng:.4g}{size}; circuitsim {t_cs:.1f} s)",
+              flush=True)
+    return worst
