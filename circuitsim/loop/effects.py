@@ -345,12 +345,22 @@ def _speed_law(node: str, rot: bool, value: str, turn: bool = False) -> Law:
     return Law(("torque" if rot else "force", node), value, terms)
 
 
+def rotational_shafts(net: Netlist) -> list[str]:
+    """The netlist's rotational nodes (shafts), the mechanical ground left out."""
+    return [n for n, d in _mechanical_nodes(net) if d == "rotational"]
+
+
+def converters(net: Netlist) -> list[tuple[str, str]]:
+    """(component, shaft node) of the netlist's declared electromechanical converters."""
+    return _converters(net)
+
+
 def always_orders(net: Netlist) -> dict[str, list[int]]:
     """Orders looked for on every shaft whether or not the residual shows their line: order
     1, a torque once per turn (an unbalance, an eccentric load, an arm's weight) and, on a
     converter's shaft, an EMF harmonic once per turn (an eccentric rotor), which a shaft
     that turns less than a few times in the record shows as no line at all."""
-    return {n: [1] for n, d in _mechanical_nodes(net) if d == "rotational"}
+    return {n: [1] for n in rotational_shafts(net)}
 
 
 def _current_law(component: str, value: str) -> Law:

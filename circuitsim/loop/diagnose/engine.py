@@ -6,7 +6,8 @@ The stages, each a function of plain objects (``context``):
    the rotor angle cannot trap the fit); the probes are weighted by their noise.
 2. ``residual.analyse`` -- RMS, spectral peaks labelled as shaft orders, whiteness.
 3. ``screen.propose`` / ``screen.screen`` -- every catalog candidate (netlist patches exact at
-   their null value), harmonic orders from the residual; a linearised fit gain ranks them.
+   their null value), harmonic orders from the residual's lines and from ``scan`` (every
+   order of every shaft scored by its linearised fit gain); a linearised fit gain ranks them.
 4. ``decide.refit_trial`` / ``decide.judge`` -- the best few are refitted with full simulation
    and judged: BIC on prewhitened residuals, share of the residual's structure explained,
    physical bounds. A candidate that re-tunes a declared term is a *correction*, never a new
@@ -67,6 +68,7 @@ from circuitsim.loop.diagnose.residual import (
     spread,
 )
 from circuitsim.loop.diagnose.result import Accepted, Diagnosis, DiagnosisError
+from circuitsim.loop.diagnose.scan import orders_by_gain, patched_raw
 from circuitsim.loop.diagnose.screen import (
     Screen,
     on_waveform,
@@ -142,7 +144,7 @@ def fit_declared(netlist, record, free, probes, params, rtol, max_effects, progr
     if net.raw is None:
         raise DiagnosisError("this netlist has no raw form to patch; load it from a file")
     model = compile_raw(net.raw)
-    _expect_grid(net.raw)
+    _expect_grid(net.raw, record.t)
     names = tuple(probes or [p for p in model.probe_names if p in record.names])
     if not names:
         raise DiagnosisError(f"the record {record.path} has no column named like a probe of "
@@ -173,13 +175,16 @@ def _expect_bent(state: ModelState) -> None:
         ahead.expect([r for r in raws if r is not None])
 
 
-def _expect_grid(raw) -> None:
-    """The grid-screened candidates' topologies are the first the next round compiles alone:
-    a worker may compile them ahead (``solve/ahead.py``) while this process fits."""
+def _expect_grid(raw, t) -> None:
+    """The order scan's circuit and the grid-screened candidates' topologies are the first
+    the next round compiles alone: a worker may compile them ahead (``solve/ahead.py``)
+    while this process fits. ``t``: the record's times [s]."""
     from circuitsim.netlist.load import build
 
     if ahead.enabled():
-        ahead.expect([c.apply(raw) for c in candidates(build(raw)) if c.grid], replace=True)
+        scanned = patched_raw(raw, np.asarray(t, float))
+        ahead.expect([*([] if scanned is None else [scanned]),
+                      *(c.apply(raw) for c in candidates(build(raw)) if c.grid)], replace=True)
 
 
 def _noise_weight(residual, measured) -> float:
@@ -215,7 +220,7 @@ def search(setup: Setup, state: ModelState, screen_top: int, clock: dict[str, fl
         if winner is None:
             break
         state = _accept(setup, state, winner, log)
-        _expect_grid(state.raw)
+        _expect_grid(state.raw, setup.record.t)
         state = _backward(setup, _swap(setup, state, log), log)
         _expect_bent(state)
         # with another effect in place, what was rejected may now be needed (an offset that
@@ -233,7 +238,10 @@ def _screen_round(setup: Setup, state: ModelState, log: dict[str, Any]) -> list[
     noise = {id(fn): (0.0 if alt is None else
                       float(np.linalg.norm(fn(alt) - fn(state.fit.sim)))) for fn in (slow, wave)}
     analysis = analyse(state.model, setup.record, state.fit, setup.probes)
-    props = _distinct(state, propose(setup, state, _orders(analysis), log["tried"]), log)
+    orders = _orders(analysis)
+    for shaft, ks in orders_by_gain(setup, state, BIC_MARGIN, orders).items():
+        orders.setdefault(shaft, []).extend(k for k in ks if k not in orders[shaft])
+    props = _distinct(state, propose(setup, state, orders, log["tried"]), log)
     # a speed effect on an angle-locked model is seen in the slow features (a large one
     # slides the ripple out of phase, beyond any linearisation), and on the waveform when the
     # slow features do not show it (a marginal one shows mostly as the ripple's slow phase

@@ -1,0 +1,325 @@
+"""Harmonic orders proposed by their fit gain: a scan over every order of every shaft.
+
+The residual's spectrum finds an order as a line; on a shaft that reverses, speeds up or
+travels a few turns, the ripple's phase in time wanders and its line smears below any
+threshold a spectrum can set without false alarms (fresh9's q04: a cogging of order 10 at
+25 sigma stood 4-7 times its background on the travelled angle, under the 13 a line needs),
+though the fit gain of the right order is hundreds of BIC units.
+
+The scan therefore scores every order k of a torque on each shaft and of a voltage in series
+with each converter by the gain of its two coefficients (sin and cos of k times the shaft's
+angle) on the prewhitened residual, over what a constant input of the same site explains
+(a load or an EMF constant the model lacks leaks into every order of a short travel). The
+columns come from step responses: the circuit is linearised along the fitted trajectory as
+a system that is time-invariant within each of ``SEGMENTS`` parts of the record, a step of
+the site's input starting at each part's beginning is simulated in one batch with the base
+run, and the response to the order-k input is each part's step response convolved with the
+input's increments in that part. A friction that holds the shaft at rest in the first part
+and lets it run in the next is then seen by each part's own response. The approximation only
+ranks orders: each proposed order is screened with its own exact sensitivities and refitted
+before any decision, as a spectral line's is.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import Literal
+
+import numpy as np
+
+from circuitsim.errors import CircuitsimError, SourceLoc
+from circuitsim.loop.diagnose.context import ModelState, Setup, compile_raw, simulate_many
+from circuitsim.loop.diagnose.noise import Whitener, whiteners_of
+
+#: the highest order scanned; also bounded by a ripple's frequency at the shaft's top speed
+#: (ORDER_NYQUIST of the record's Nyquist frequency) and by its travel (one period at least)
+MAX_ORDER = 64
+ORDER_NYQUIST = 0.5
+#: parts of the record, each with its own step response (its own linearisation)
+SEGMENTS = 4
+#: orders proposed per site: the best local maxima of its gain over the orders
+PER_SITE = 2
+#: [N*m] / [V] the first size of a site's step; rescaled once into the linear range
+STEP = 1e-4
+#: the rise of a step, as a fraction of the sampling interval (it is complete at the sample)
+RISE = 1e-3
+
+Kernels = dict[str, list[np.ndarray]]  # per probe, per part: response [noise units / input]
+
+
+@dataclass(frozen=True, slots=True)
+class Site:
+    """Where an order-k input enters: a torque on ``shaft``, or a voltage in series with the
+    converter ``where`` (an EMF harmonic: the input is the shaft's speed times the ripple)."""
+
+    kind: Literal["torque", "voltage"]
+    where: str
+    shaft: str
+
+    @property
+    def amp(self) -> str:
+        """The parameter of the step's size [N*m or V]."""
+        return f"order_scan_{self.where.replace('.', '_')}_u"
+
+    @property
+    def onset(self) -> str:
+        """The parameter of the step's start [s]."""
+        return f"order_scan_{self.where.replace('.', '_')}_t"
+
+
+def sites_of(net) -> list[Site]:
+    """Every shaft's torque site and every converter's voltage site of a built netlist."""
+    from circuitsim.loop.effects import converters, rotational_shafts
+
+    return [*(Site("torque", n, n) for n in rotational_shafts(net)),
+            *(Site("voltage", c, n) for c, n in converters(net))]
+
+
+def _patched(raw, sites: Sequence[Site], rise: float, end: float):
+    """``raw`` with a step of each site's input: zero until its onset, then its size held
+    to ``end`` [s]; inert at size zero."""
+    from circuitsim.loop.effects import add_part
+
+    out = raw.copy()
+    loc = SourceLoc(raw.path or "<scan>")
+    for s in sites:
+        out.params[s.amp] = ("0.0", loc)
+        out.params[s.onset] = (f"{0.5 * end!r} s", loc)
+        unit = "N*m" if s.kind == "torque" else "V"
+        wave = {"pwl": [[0, 0], [s.onset, 0], [f"{s.onset} + {rise!r}[s]", f"{s.amp}*1[{unit}]"],
+                        [f"{end!r} s", f"{s.amp}*1[{unit}]"]]}
+        if s.kind == "torque":
+            add_part(out, {"name": f"SCAN_{s.where}", "type": "torque", "shaft": s.where,
+                           "T": wave})
+        else:  # in series with the converter, as the catalog's EMF harmonic is
+            entry = out.component_entry(s.where)
+            node, entry["n"] = str(entry["n"]), f"SCAN_{s.where}_n"
+            add_part(out, {"name": f"SCAN_{s.where}", "type": "V", "p": f"SCAN_{s.where}_n",
+                           "n": node, "V": wave})
+    return out
+
+
+def patched_raw(raw, t: np.ndarray):
+    """The circuit ``orders_by_gain`` compiles for ``raw`` and a record's times ``t`` [s]
+    (a worker may compile it ahead), or None when ``raw`` has no site."""
+    from circuitsim.netlist.load import build
+
+    sites = sites_of(build(raw))
+    if not sites or t.size < 2:
+        return None
+    return _patched(raw, sites, RISE * float(t[1] - t[0]), 2.0 * float(t[-1]) + 1.0)
+
+
+def orders_by_gain(setup: Setup, state: ModelState, margin: float,
+                   known: Mapping[str, Sequence[int]] | None = None) -> dict[str, list[int]]:
+    """Orders per shaft whose linearised gain promises a BIC fall above ``margin``: at most
+    ``PER_SITE`` a site besides the ``known`` ones, local maxima of the gain over the orders,
+    best first."""
+    from circuitsim.netlist.load import build
+
+    known = known or {}
+    t = np.asarray(setup.record.t, float)
+    if t.size < 64 or not setup.record.uniform:
+        setup.log("order scan skipped: the record is not uniformly sampled"
+                  if t.size >= 64 else "order scan skipped: the record is too short")
+        return {}
+    sites = [s for s in sites_of(build(state.raw)) if _turns(state, s.shaft)]
+    kernels = _step_responses(setup, state, sites) if sites else None
+    if kernels is None:
+        if sites:
+            setup.log("order scan skipped: its step responses could not be simulated")
+        return {}
+    base, responses, onsets = kernels
+    whiten = whiteners_of(state.fit.residuals, setup.probes)
+    e0 = {p: (np.asarray(setup.record[p], float) - np.asarray(base[p], float))
+          / setup.weights[p] for p in setup.probes}
+    ew = np.concatenate([whiten[p].apply(e0[p]) for p in setup.probes])
+    convs = {site: _Convolver(g, onsets, t.size) for site, g in responses.items()}
+    # what a constant input of any site explains is no order's: a load, a friction or an
+    # EMF constant the model lacks leaks into every order of a short travel
+    nuisance = [_column(setup, site, base, conv, whiten, np.ones_like)
+                for site, conv in convs.items()]
+    out: dict[str, list[int]] = {}
+    for site, conv in convs.items():
+        promises = _site_promises(setup, site, base, conv, whiten, ew, nuisance)
+        best = _peaks(promises, margin, set(known.get(site.shaft, ())))
+        if best:
+            setup.log(f"order scan of {site.kind} on {site.where}: orders "
+                      + ", ".join(f"{k} ({promises[k - 1]:.0f})" for k in best))
+        for k in best:
+            if k not in out.setdefault(site.shaft, []):
+                out[site.shaft].append(k)
+    return out
+
+
+def _turns(state: ModelState, shaft: str) -> bool:
+    """Whether the shaft's angle spans a whole turn in the fitted run. An order is a
+    property of a turn: over a swing of less than one, orders 2, 3, ... are a Fourier series
+    of any smooth law of the angle (a cable's spring on a robot arm swinging 4.7 rad was
+    fitted as orders 1, 2 and 3: fresh9's q12), and order 1 is looked for anyway."""
+    try:
+        phi = np.asarray(state.fit.sim[f"{shaft}.phi"], float)
+    except KeyError:
+        return False
+    return bool(phi.size and np.ptp(phi) >= 2 * math.pi)
+
+
+def _onsets(n: int) -> list[int]:
+    """Sample indices where the parts begin: the first at sample 1, so that every step starts
+    after t = 0 (an operating point at t = 0, or a record that starts later, sees none)."""
+    return sorted({1 + round(m * (n - 2) / SEGMENTS) for m in range(SEGMENTS)})
+
+
+def _step_responses(setup: Setup, state: ModelState, sites: Sequence[Site]
+                    ) -> tuple[Mapping, dict[Site, Kernels], list[int]] | None:
+    """(base run, per site the step response of each part, the parts' first samples) from
+    one batch; a site whose step leaves the linear range, or is lost in the solver's noise,
+    is run again at a rescaled size, and keeps its first responses when that run fails."""
+    t = np.asarray(setup.record.t, float)
+    onsets = _onsets(t.size)
+    rise = RISE * float(t[1] - t[0])
+    try:
+        model = compile_raw(patched_raw(state.raw, t))
+    except (CircuitsimError, KeyError, ValueError) as exc:
+        setup.log(f"order scan: its patch did not compile ({exc})")
+        return None
+    sizes = dict.fromkeys(sites, STEP)
+    base, out = None, {}
+    todo = list(sites)
+    for attempt in range(2):
+        runs = simulate_many(setup, model, [state.params, *(
+            {**state.params, s.amp: sizes[s], s.onset: float(t[j]) - rise}
+            for s in todo for j in onsets)])
+        if runs[0] is None:
+            break
+        if base is None:
+            base = runs[0]
+        again = []
+        for i, s in enumerate(todo):
+            got = runs[1 + i * len(onsets):1 + (i + 1) * len(onsets)]
+            if any(r is None for r in got):
+                continue
+            g = {p: [(np.asarray(r[p], float) - np.asarray(runs[0][p], float))[j:]
+                     / (setup.weights[p] * sizes[s]) for r, j in zip(got, onsets, strict=True)]
+                 for p in setup.probes}
+            out[s] = g
+            scale = _rescale(g, sizes[s], setup.n * len(setup.probes))
+            if attempt == 0 and scale != 1.0:
+                sizes[s] *= scale
+                again.append(s)
+        todo = again
+        if not todo:
+            break
+    return None if base is None or not out else (base, out, onsets)
+
+
+def _rescale(g: Kernels, size: float, n: int) -> float:
+    """The factor that brings a step's largest response to 0.3 noise units RMS over the ``n``
+    samples of all probes (linear, and far above the solver's own noise at a relative
+    tolerance of 1e-8); 1 when it is within a factor 100 of that already."""
+    largest = size * max(math.sqrt(sum(float(g[p][m] @ g[p][m]) for p in g))
+                         for m in range(len(next(iter(g.values())))))
+    if not 0.0 < largest < math.inf:
+        return 1.0
+    ratio = 0.3 * math.sqrt(n) / largest
+    return 1.0 if 0.01 <= ratio <= 100.0 else min(max(ratio, 1e-6), 1e6)
+
+
+class _Convolver:
+    """The response of each probe to an input u(t) of a site, from its parts' step responses:
+    the dynamic part convolves each part's response (less its value at the step, a direct
+    feedthrough) with the increments of u held over each sampling interval at its value in
+    the interval's middle (second-order accurate; held at the start, it lags half a sample:
+    8 % of a 270 Hz ripple at 10 kHz); the feedthrough multiplies u at the sample itself."""
+
+    def __init__(self, g: Kernels, onsets: list[int], n: int):
+        self.n, self.onsets = n, onsets
+        self.size = 1 << int(2 * n - 1).bit_length()  # no circular wrap
+        self.G = {p: [np.fft.rfft(k - k[0], self.size) for k in ks] for p, ks in g.items()}
+        self.direct = {p: np.zeros(n) for p in g}
+        bounds = [*onsets, n]
+        for p, ks in g.items():
+            for m, k in enumerate(ks):
+                self.direct[p][bounds[m]:bounds[m + 1]] = k[0]
+
+    def __call__(self, u_mid: np.ndarray, u_at: np.ndarray) -> dict[str, np.ndarray]:
+        """Responses [noise units] to an input whose interval midpoints are ``u_mid`` and
+        samples ``u_at``; the input is zero before the first part."""
+        first = self.onsets[0]
+        step = np.diff(u_mid, prepend=0.0)
+        step[:first] = 0.0
+        step[first] = u_mid[first]
+        index = np.arange(self.n)
+        parts = np.stack([np.where((index >= a) & (index < b), step, 0.0)
+                          for a, b in itertools.pairwise([*self.onsets, self.n])])
+        U = np.fft.rfft(parts, self.size, axis=1)
+        at = np.where(index >= first, u_at, 0.0)
+        return {p: np.fft.irfft(np.sum(np.stack(G) * U, axis=0), self.size)[:self.n]
+                + self.direct[p] * at for p, G in self.G.items()}
+
+
+def _column(setup: Setup, site: Site, base, conv: _Convolver,
+            whiten: Mapping[str, Whitener], f) -> np.ndarray:
+    """The prewhitened response of all probes to the site's input f(phi) (times the speed
+    at a voltage site)."""
+    phi, w = (np.asarray(base[f"{site.shaft}.{x}"], float) for x in ("phi", "w"))
+    u = f(phi) * (w if site.kind == "voltage" else 1.0)
+    y = conv(_midpoints(u), u)
+    return np.concatenate([whiten[p].apply(y[p]) for p in setup.probes])
+
+
+def _site_promises(setup: Setup, site: Site, base, conv: _Convolver,
+                   whiten: Mapping[str, Whitener], ew: np.ndarray,
+                   nuisance: list[np.ndarray]) -> np.ndarray:
+    """The BIC fall each order 1..K promises on the prewhitened residual ``ew``, over what
+    the ``nuisance`` columns explain (-inf where an order is not scanned)."""
+    phi, w = (np.asarray(base[f"{site.shaft}.{x}"], float) for x in ("phi", "w"))
+    t = np.asarray(setup.record.t, float)
+    travel = float(np.sum(np.abs(np.diff(phi))))
+    top = float(np.max(np.abs(w)))
+    kmax = MAX_ORDER if top <= 0.0 else min(
+        MAX_ORDER, int(ORDER_NYQUIST * 0.5 / float(t[1] - t[0]) * 2 * math.pi / top))
+    out = np.full(max(kmax, 0), -np.inf)
+    dim = ew.size
+    base_gain, _ = _gain(nuisance, ew)
+    rest = float(ew @ ew) - base_gain
+    for k in range(1, kmax + 1):
+        if k > 1 and k * travel < 2 * math.pi:  # under one period: a drift, not an order
+            continue
+        gain, ok = _gain([*nuisance, *(_column(setup, site, base, conv, whiten,
+                                               lambda x, k=k, f=f: f(k * x))
+                                       for f in (np.sin, np.cos))], ew)
+        if ok and rest > 0.0:
+            share = min(max((gain - base_gain) / rest, 0.0), 1.0 - 1e-15)
+            out[k - 1] = -dim * math.log(1.0 - share) - 2 * math.log(dim)
+    return out
+
+
+def _gain(cols: list[np.ndarray], e: np.ndarray) -> tuple[float, bool]:
+    """The sum of squares of ``e`` that least squares on ``cols`` explains (unit-norm
+    columns); False when a column is null."""
+    S = np.column_stack(cols)
+    scale = np.linalg.norm(S, axis=0)
+    if not np.all(scale > 0.0):
+        return 0.0, False
+    coef, *_ = np.linalg.lstsq(S / scale, e, rcond=None)
+    return float(e @ ((S / scale) @ coef)), True
+
+
+def _midpoints(x: np.ndarray) -> np.ndarray:
+    """``x`` in the middle of each sample interval (the last sample's interval continues
+    the slope before it)."""
+    return np.concatenate([0.5 * (x[1:] + x[:-1]), [1.5 * x[-1] - 0.5 * x[-2]]])
+
+
+def _peaks(promises: np.ndarray, margin: float, known: set[int]) -> list[int]:
+    """Orders (1-based), not ``known`` nor 1 (looked for on every shaft already), at local
+    maxima of ``promises`` above ``margin``, best first."""
+    ks = [k for k in range(1, len(promises)) if promises[k] > margin
+          and k + 1 not in known and promises[k] > promises[k - 1]
+          and (k == len(promises) - 1 or promises[k] >= promises[k + 1])]
+    ks.sort(key=lambda k: -promises[k])
+    return [k + 1 for k in ks[:PER_SITE]]
