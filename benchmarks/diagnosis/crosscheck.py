@@ -1,4 +1,4 @@
-"""What the validate_g/h/j.py cross-checks share: a truth's catalog effects as the catalog's
+"""What the validate_g/h/j/k.py cross-checks share: a truth's catalog effects as the catalog's
 own netlist patches (the declared netlist carrying each effect's patch at the truth's values
 must give what the scipy simulator gives with the effect written out by hand), and the
 comparison of a scipy model with circuitsim on the record grid. Each motor's simulator stays
@@ -78,3 +78,34 @@ def compare(cs: Any, sim: Any, motor: str, nominal: Mapping[str, float],
               f"rms/std {rms:.1e} (range {rng:.4g}{size}; circuitsim {t_cs:.1f} s)",
               flush=True)
     return worst
+
+
+def check_set(cs: Any, motor: str, specs: list[dict], scale_marginal: Any, patched: Any,
+              outside_laws: Mapping[str, Any], compare: Any, netlists: Mapping[str, Path],
+              target: float) -> int:
+    """The null of each regime, every catalog and two-effect record through the catalog's
+    own patch, and every outside record whose law a component states, against the scipy
+    model; prints the worst difference and returns the exit status (0: below ``target``)."""
+    worst = max(compare(cs, r, "null", {}) for r in ("fast", "slow"))
+    for s in specs:
+        regime = s["regime"]
+        if s["marginal"] is not None:
+            scale_marginal(s)
+        if s["class"] in ("catalog", "two"):
+            raw, values = patched(cs.load(netlists[regime]), regime, s["effects"])
+            # the id and class only: the effects stay in truth.json (the set is blind)
+            label = f"{s['id']} {s['class']}, the catalog's patch"
+            worst = max(worst, compare(cs, regime, label, s["fx"], raw, values))
+        elif s["class"] == "outside":
+            law = next((f for k, f in outside_laws.items() if k in s["fx"]), None)
+            if law is None:
+                print(f"motor {motor} {regime:4s} {s['id']} outside: no component states its "
+                      "law (not compared)")
+                continue
+            raw = cs.load(netlists[regime]).raw.copy()
+            law(raw, s["fx"])
+            worst = max(worst, compare(cs, regime, f"{s['id']} outside, as components",
+                                       s["fx"], raw))
+    print(f"worst max |diff|/range {worst:.2e} -> {'OK' if worst < target else 'ABOVE'} "
+          f"(target {target:g})")
+    return 0 if worst < target else 1
