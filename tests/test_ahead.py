@@ -77,6 +77,15 @@ def test_the_worker_fills_the_cache_the_caller_reads(fresh, monkeypatch):
     assert with_kernels.success and np.array_equal(with_kernels.y, plain.y)
 
 
+def _kept_since(raw) -> float:
+    """When numba wrote the first of the topology's kept kernels [s since the epoch]."""
+    from circuitsim.compiler.cache import cache_key
+    from circuitsim.netlist.load import build
+
+    key = cache_key(build(raw).topology_key())
+    return min(f.stat().st_mtime for f in (direct_cache() / "__pycache__").glob(f"{key}_*"))
+
+
 def direct_cache():
     from circuitsim.memo import cache_dir
 
@@ -94,6 +103,30 @@ def test_a_claim_takes_a_queued_topology_back(fresh):
         assert worker.running == ahead._key(first)  # one job at a time, in order
     assert _wait_done(second)
     assert ahead._key(third) not in worker.done
+
+
+def test_the_later_line_waits_and_survives_a_replace(fresh):
+    first, soon, late = fresh("l1"), fresh("l2"), fresh("l3")
+    ahead.expect([first])  # the worker takes it at once: the others queue behind it
+    worker = ahead._WORKER[0]
+    with worker.cond:  # held (it is re-entrant): the worker's reports wait till the checks
+        ahead.expect([late], later=True)
+        ahead.expect([soon], replace=True)  # a round's guesses replaced: the later line stays
+        assert [k for k, _ in worker.later] == [ahead._key(late)]
+        assert [k for k, _ in worker.queue] == [ahead._key(soon)]
+    assert _wait_done(soon) and _wait_done(late)
+    assert _kept_since(late) >= _kept_since(soon)  # compiled after what was needed sooner
+    # a topology needed soon that waited in the later line moves up
+    a, b = fresh("l4"), fresh("l5")
+    with worker.cond:
+        worker.running = "busy"  # held idle while the lines are arranged
+    ahead.expect([a], later=True)
+    ahead.expect([b, a])
+    with worker.cond:
+        assert [k for k, _ in worker.queue] == [ahead._key(b), ahead._key(a)]
+        assert not worker.later
+        worker.queue.clear()
+        worker.running = None
 
 
 def test_a_job_that_cannot_compile_ends(fresh):

@@ -58,6 +58,9 @@ class _Worker:
                                      stderr=subprocess.DEVNULL, env=env)
         self.cond = threading.Condition()
         self.queue: list[tuple[str, Any]] = []
+        # needed at the end, not soon: compiled when the queue is empty, kept when it is
+        # replaced (a diagnosis's law test, while its rounds queue and drop their guesses)
+        self.later: list[tuple[str, Any]] = []
         self.running: str | None = None  # sent to the worker
         self.compiling: str | None = None  # the worker found it not compiled yet: at work
         self.done: set[str] = set()
@@ -80,13 +83,14 @@ class _Worker:
         with self.cond:
             self.alive, self.running, self.compiling = False, None, None
             self.queue.clear()
+            self.later.clear()
             self.cond.notify_all()
 
     def _next(self) -> None:
         """Send the first queued job when the worker is idle (the caller holds the lock)."""
-        if self.running is not None or not self.queue or not self.alive:
+        if self.running is not None or not (self.queue or self.later) or not self.alive:
             return
-        key, raw = self.queue.pop(0)
+        key, raw = (self.queue or self.later).pop(0)
         blob = pickle.dumps((key, raw), protocol=4)
         try:
             self.proc.stdin.write(struct.pack("<Q", len(blob)) + blob)
@@ -96,15 +100,20 @@ class _Worker:
             return
         self.running = key
 
-    def submit(self, raws: Iterable[Any], replace: bool) -> None:
+    def submit(self, raws: Iterable[Any], replace: bool, later: bool = False) -> None:
         with self.cond:
+            line = self.later if later else self.queue
             if replace:
-                self.queue.clear()
-            queued = {k for k, _ in self.queue}
+                line.clear()
+            # a topology needed soon leaves the later line; one needed later and queued
+            # for soon already stays there
+            queued = {k for k, _ in (*self.queue, *(() if not later else self.later))}
             for raw in raws:
                 key = _key(raw)
                 if key is not None and key not in self.done and key != self.running and key not in queued:
-                    self.queue.append((key, raw))
+                    if not later:
+                        self.later[:] = [(k, r) for k, r in self.later if k != key]
+                    line.append((key, raw))
                     queued.add(key)
             self._next()
 
@@ -114,6 +123,7 @@ class _Worker:
             return
         with self.cond:
             self.queue = [(k, r) for k, r in self.queue if k != key]
+            self.later = [(k, r) for k, r in self.later if k != key]
             # a job the worker still checks (or imports for) is not waited for: the caller
             # may load it from the cache, or compile it, as fast
             self.cond.wait_for(lambda: self.compiling != key, timeout=WAIT)
@@ -121,6 +131,7 @@ class _Worker:
     def close(self) -> None:
         with self.cond:
             self.queue.clear()
+            self.later.clear()
         try:
             self.proc.stdin.close()
             # a compile it is at is not waited for long: numba and the model cache write
@@ -177,10 +188,12 @@ def _cores() -> int:
     return os.cpu_count() or 1
 
 
-def expect(raws: Iterable[Any], replace: bool = False) -> None:
+def expect(raws: Iterable[Any], replace: bool = False, later: bool = False) -> None:
     """Queue raw netlists whose topologies will be needed soon, in order of need (after the
-    queued ones; ``replace``: instead of them). Those whose kernels numba keeps already are
-    left out, and no worker is started for none (a warm cache: it would only compete)."""
+    queued ones; ``replace``: instead of them). ``later``: needed only at the end, compiled
+    when nothing else is queued, in a line of their own that the soon-needed ones' ``replace``
+    leaves alone. Those whose kernels numba keeps already are left out, and no worker is
+    started for none (a warm cache: it would only compete)."""
     if not enabled():
         return
     from circuitsim.memo import cache_dir
@@ -189,7 +202,7 @@ def expect(raws: Iterable[Any], replace: bool = False) -> None:
     todo = [raw for raw in raws if not _kept(raw, folder)]
     worker = _worker() if todo or (_WORKER and _WORKER[0] is not None) else None
     if worker is not None:
-        worker.submit(todo, replace)
+        worker.submit(todo, replace, later)
 
 
 def _kept(raw, folder: Path) -> bool:

@@ -110,15 +110,17 @@ def outputs(mem, yy, yp, tspan, Y, YP, out_t, out_y, out_yp):
     """IDA_NORMAL to every output time, storing t, y and y' (the loop without Python), up to
     and including a root of the guards; the number of rows filled and IDA's last flag."""
     tret = numpy.zeros(1)
-    k, flag = 1, 0
+    k, flag, n = 1, 0, Y.size
     while k < tspan.size:
         flag = IDA_SOLVE(as_pointer(mem), tspan[k], as_pointer(tret.ctypes.data),
                          as_pointer(yy), as_pointer(yp), 1)
         if flag < 0:
             break
         out_t[k] = tret[0]
-        out_y[k, :] = Y
-        out_yp[k, :] = YP
+        # element by element: a slice assignment costs numba 2 s of compiling, once per cache
+        for j in range(n):
+            out_y[k, j] = Y[j]
+            out_yp[k, j] = YP[j]
         k += 1
         if flag == 2:  # IDA_ROOT_RETURN: every guard is terminal; the root is the last row
             break

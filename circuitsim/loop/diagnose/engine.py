@@ -168,11 +168,11 @@ def fit_declared(netlist, record, free, probes, params, rtol, max_effects, progr
 
 def _expect_bent(state: ModelState) -> None:
     """The circuits the law test bends at the end (``law``), as the model stands: a worker
-    may compile them while the search goes on."""
+    may compile them while the search goes on, when nothing needed sooner is queued."""
     if ahead.enabled():
         raws = [bent_raw(state.raw, c.candidate.law) for c in state.chosen
                 if not c.correction and getattr(c.candidate, "law", None) is not None]
-        ahead.expect([r for r in raws if r is not None])
+        ahead.expect([r for r in raws if r is not None], replace=True, later=True)
 
 
 def _expect_grid(raw, t) -> None:
@@ -363,10 +363,16 @@ def _refit_round(setup: Setup, state: ModelState, screens: list[Screen],
     that re-tune a declared term (corrections)."""
     trials: list[tuple[Trial, frozenset[str]]] = []
     raws = [s.proposal.candidate.apply(state.raw) for s in screens if s.model is None]
+    if screens and ahead.enabled():
+        # the next round's order scan when the best screened wins, as it mostly does: the
+        # round's first compile after an acceptance, needed before anything else is queued
+        raws.append(patched_raw(screens[0].proposal.candidate.apply(state.raw),
+                                np.asarray(setup.record.t, float)))
     if len(screens) >= 2:
         raws.append(screens[1].proposal.candidate.apply(screens[0].proposal.candidate.apply(
             state.raw)))
-    ahead.expect(raws, replace=True)  # compiled ahead in the order of the refits
+    # compiled ahead in the order of the refits
+    ahead.expect([r for r in raws if r is not None], replace=True)
     for s in screens:
         c = s.proposal.candidate
         setup.log(f"refitting {c.key}")
