@@ -129,6 +129,23 @@ def test_the_later_line_waits_and_survives_a_replace(fresh):
         worker.running = None
 
 
+def test_a_lent_jacobian_is_compiled_by_the_worker_and_loaded_here(fresh, monkeypatch):
+    other, raw = fresh("m1"), fresh("m2")
+    ahead.expect([other])  # the worker is up
+    assert _wait_done(other)
+    model = _compiled(raw)
+    module = direct.kernels(model)
+    direct._compile_shared(module, model, ("residual", "jacobian"))
+    worker = ahead._WORKER[0]
+    assert f"kernels {model.key} jacobian" in worker.done  # compiled there, not here
+    assert direct.cfunc(module, "jacobian").cache_hits  # and loaded from the cache
+    assert not direct.cfunc(module, "residual").cache_hits  # this one compiled here
+    with_kernels = model.simulate()
+    monkeypatch.setenv("CIRCUITSIM_KERNELS", "python")
+    plain = model.simulate()
+    assert with_kernels.success and np.array_equal(with_kernels.y, plain.y)
+
+
 def test_a_job_that_cannot_compile_ends(fresh):
     # two voltage sources in parallel: the netlist builds, its model does not
     bad = fresh("c", "  - {name: V2, type: V, p: in, n: gnd, V: 2 V}")

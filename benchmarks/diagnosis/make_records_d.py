@@ -14,10 +14,7 @@ they were written.
 
 from __future__ import annotations
 
-import argparse
-import json
 import sys
-import time
 from pathlib import Path
 from typing import Any
 
@@ -26,8 +23,8 @@ import numpy as np
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
+import recordkit
 import simulators_d as sd
-from make_records import describe_noise  # the noise text only; no simulator of the first set
 
 RECORDS = HERE / "records"
 TRUTH = HERE / "truth.json"
@@ -284,35 +281,20 @@ def unexplained(regime: str, clean: dict[str, np.ndarray]) -> dict[str, Any]:
             "all_scalar_effects_jointly": float(np.linalg.norm(tr - x @ coef))}
 
 
-def noise_spec(spec: dict[str, Any]) -> dict[str, dict[str, Any]]:
-    """The record's noise per probe (default: WHITE)."""
-    if spec["noise"] is not None:
-        return spec["noise"]
-    return {p: {"white": s} for p, s in WHITE[spec["regime"]].items()}
-
-
 def truth_entry(spec: dict[str, Any], sig: dict[str, float]) -> dict[str, Any]:
     """The record's truth.json entry (the schema of the other splits)."""
     regime = spec["regime"]
     fs, dur = sd.REGIMES[regime]
-    ns = noise_spec(spec)
+    ns = recordkit.noise_or_white(spec, WHITE)
     return {
         "id": spec["id"], "class": spec["class"], "split": SPLIT, "motor": MOTOR,
         "netlist": NETLIST[regime], "regime": regime, "sample_rate_Hz": fs,
         "duration_s": dur, "csv": f"benchmarks/diagnosis/records/{spec['id']}.csv",
         "probes": list(sd.PROBES[regime]), "inputs": ["u"] if regime == "slow" else [],
-        "free": [], "declared_error": {}, "noise": ns, "noise_text": describe_noise(ns),
+        "free": [], "declared_error": {}, "noise": ns, "noise_text": recordkit.noise_text(ns),
         "seed": spec["seed"], "effects": spec["effects"], "declared_terms": [],
         "signature_sigma": sig, "marginal": False, "note": spec["note"],
     }
-
-
-def write_csv(path: Path, t: np.ndarray, cols: dict[str, np.ndarray]) -> None:
-    """A record: ``time`` [s] and one column per name."""
-    names = list(cols)
-    arr = np.column_stack([t, *[cols[n] for n in names]])
-    np.savetxt(path, arr, delimiter=",", header=",".join(["time", *names]), comments="",
-               fmt="%.10g")
 
 
 def make(spec: dict[str, Any], write: bool) -> dict[str, Any]:
@@ -325,46 +307,17 @@ def make(spec: dict[str, Any], write: bool) -> dict[str, Any]:
         entry["unexplained_sigma"] = unexplained(regime, clean)
     if write:
         rng = np.random.default_rng(spec["seed"])
-        ns = noise_spec(spec)
+        ns = recordkit.noise_or_white(spec, WHITE)
         cols = {p: sd.add_noise(rng, clean[p], ns[p]) for p in sd.PROBES[regime]}
         if "u" in clean:
             cols["u"] = clean["u"]
         RECORDS.mkdir(exist_ok=True)
-        write_csv(RECORDS / f"{spec['id']}.csv", t, cols)
+        recordkit.write_csv(RECORDS / f"{spec['id']}.csv", t, cols)
     return entry
 
 
-def merge(entries: list[dict[str, Any]]) -> None:
-    """Put ``entries`` into truth.json: same id replaced in place, new ids appended; every
-    other entry untouched."""
-    data = json.loads(TRUTH.read_text()) if TRUTH.exists() else {"records": []}
-    new = {e["id"]: e for e in entries}
-    records = [new.pop(e["id"], e) for e in data["records"]]
-    records += list(new.values())
-    data["records"] = records
-    TRUTH.write_text(json.dumps(data, indent=1) + "\n")
-
-
 def main(argv: list[str] | None = None) -> int:
-    """Generate the records (or those of ``--only``) and merge their truth."""
-    ap = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
-    ap.add_argument("--only", default="", help="record ids, comma-separated")
-    ap.add_argument("--truth-only", action="store_true", help="do not write CSVs")
-    args = ap.parse_args(argv)
-    only = {s.strip() for s in args.only.split(",") if s.strip()}
-    entries = []
-    for spec in record_specs():
-        if only and spec["id"] not in only:
-            continue
-        t0 = time.perf_counter()
-        entry = make(spec, not args.truth_only)
-        entries.append(entry)
-        effects = ", ".join(e["effect"] for e in entry["effects"]) or "-"
-        sig = ", ".join(f"{k} {v:.3g}" for k, v in entry["signature_sigma"].items())
-        print(f"{spec['id']} {spec['class']:8s} D-{spec['regime']:4s} {effects:50s} "
-              f"signature {sig} ({time.perf_counter() - t0:.1f} s)", flush=True)
-    merge(entries)
-    return 0
+    return recordkit.main(argv, __doc__, record_specs, make, "D")
 
 
 if __name__ == "__main__":

@@ -15,10 +15,7 @@ they were written.
 
 from __future__ import annotations
 
-import argparse
-import json
 import sys
-import time
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -28,8 +25,8 @@ import numpy as np
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
+import recordkit
 import simulators_e as se
-from make_records import describe_noise  # the noise text only; no simulator of the first set
 
 RECORDS = HERE / "records"
 TRUTH = HERE / "truth.json"
@@ -366,36 +363,21 @@ def separation(regime: str, clean: dict[str, np.ndarray], same: set[str]) -> dic
     return out
 
 
-def noise_spec(spec: dict[str, Any]) -> dict[str, dict[str, Any]]:
-    """The record's noise per probe (default: WHITE)."""
-    if spec["noise"] is not None:
-        return spec["noise"]
-    return {p: {"white": s} for p, s in WHITE[spec["regime"]].items()}
-
-
 def truth_entry(spec: dict[str, Any], sig: dict[str, float]) -> dict[str, Any]:
     """The record's truth.json entry (the schema of the other splits)."""
     regime = spec["regime"]
     fs, dur = se.REGIMES[regime]
-    ns = noise_spec(spec)
+    ns = recordkit.noise_or_white(spec, WHITE)
     return {
         "id": spec["id"], "class": spec["class"], "split": SPLIT, "motor": MOTOR,
         "netlist": NETLIST[regime], "regime": regime, "sample_rate_Hz": fs,
         "duration_s": dur, "csv": f"benchmarks/diagnosis/records/{spec['id']}.csv",
         "probes": list(se.PROBES[regime]), "inputs": ["u"] if regime == "slow" else [],
-        "free": [], "declared_error": {}, "noise": ns, "noise_text": describe_noise(ns),
+        "free": [], "declared_error": {}, "noise": ns, "noise_text": recordkit.noise_text(ns),
         "seed": spec["seed"], "effects": spec["effects"], "declared_terms": [],
         "signature_sigma": sig, "marginal": spec["marginal"] is not None,
         "note": spec["note"],
     }
-
-
-def write_csv(path: Path, t: np.ndarray, cols: dict[str, np.ndarray]) -> None:
-    """A record: ``time`` [s] and one column per name."""
-    names = list(cols)
-    arr = np.column_stack([t, *[cols[n] for n in names]])
-    np.savetxt(path, arr, delimiter=",", header=",".join(["time", *names]), comments="",
-               fmt="%.10g")
 
 
 def clean_of(regime: str, fx: Fx) -> dict[str, np.ndarray]:
@@ -431,53 +413,17 @@ def make(spec: dict[str, Any], write: bool) -> dict[str, Any]:
         entry["separation_sigma"] = separation(regime, clean, same)
     if write:
         rng = np.random.default_rng(spec["seed"])
-        ns = noise_spec(spec)
+        ns = recordkit.noise_or_white(spec, WHITE)
         cols = {p: se.add_noise(rng, clean[p], ns[p]) for p in se.PROBES[regime]}
         if "u" in clean:
             cols["u"] = clean["u"]
         RECORDS.mkdir(exist_ok=True)
-        write_csv(RECORDS / f"{spec['id']}.csv", t, cols)
+        recordkit.write_csv(RECORDS / f"{spec['id']}.csv", t, cols)
     return entry
 
 
-def merge(entries: list[dict[str, Any]]) -> None:
-    """Put ``entries`` into truth.json: same id replaced in place, new ids appended; every
-    other entry untouched."""
-    data = json.loads(TRUTH.read_text()) if TRUTH.exists() else {"records": []}
-    new = {e["id"]: e for e in entries}
-    records = [new.pop(e["id"], e) for e in data["records"]]
-    records += list(new.values())
-    data["records"] = records
-    TRUTH.write_text(json.dumps(data, indent=1) + "\n")
-
-
 def main(argv: list[str] | None = None) -> int:
-    """Generate the records (or those of ``--only``) and merge their truth."""
-    ap = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
-    ap.add_argument("--only", default="", help="record ids, comma-separated")
-    ap.add_argument("--truth-only", action="store_true", help="do not write CSVs")
-    args = ap.parse_args(argv)
-    only = {s.strip() for s in args.only.split(",") if s.strip()}
-    entries = []
-    t_all = time.perf_counter()
-    for spec in record_specs():
-        if only and spec["id"] not in only:
-            continue
-        t0 = time.perf_counter()
-        entry = make(spec, not args.truth_only)
-        entries.append(entry)
-        effects = ", ".join(e["effect"] for e in entry["effects"]) or "-"
-        sig = ", ".join(f"{k} {v:.3g}" for k, v in entry["signature_sigma"].items())
-        extra = ""
-        if "unexplained_sigma" in entry:
-            u = entry["unexplained_sigma"]
-            extra = (f"; left by {u['best_single'][0]} {u['best_single'][1]:.3g}, by all "
-                     f"{u['all_scalar_effects_jointly']:.3g} of {u['imprint']:.3g}")
-        print(f"{spec['id']} {spec['class']:8s} E-{spec['regime']:4s} {effects:40s} "
-              f"signature {sig}{extra} ({time.perf_counter() - t0:.1f} s)", flush=True)
-    merge(entries)
-    print(f"{len(entries)} records in {time.perf_counter() - t_all:.1f} s")
-    return 0
+    return recordkit.main(argv, __doc__, record_specs, make, "E")
 
 
 if __name__ == "__main__":

@@ -14,10 +14,7 @@ entry with the same id is replaced. Nobody ran the diagnosis on these records.
 
 from __future__ import annotations
 
-import argparse
-import json
 import sys
-import time
 from pathlib import Path
 from typing import Any
 
@@ -26,6 +23,7 @@ import numpy as np
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
+import recordkit
 import simulators_f as sf
 
 RECORDS = HERE / "records"
@@ -43,22 +41,6 @@ P = sf.MOTOR_F
 N = P["N"]
 #: the fan's inertia reflected to the rotor over the rotor's own: dJ of Jf is dJ*this of Jr
 JF_OVER_JM = P["Jf"] / N**2 / P["Jm"]
-
-
-def describe_noise(ns: dict) -> str:
-    out = []
-    for p, d in ns.items():
-        parts = []
-        if d.get("white"):
-            parts.append(f"white sigma {d['white']:g}")
-        if d.get("ar1"):
-            parts.append(f"AR(1) sigma {d['ar1'][0]:g} phi {d['ar1'][1]:g}")
-        if d.get("pink"):
-            parts.append(f"1/f sigma {d['pink']:g}")
-        if d.get("quant"):
-            parts.append(f"ADC step {d['quant']:g}")
-        out.append(f"{p}: " + ", ".join(parts))
-    return "; ".join(out)
 
 
 # ---------------------------------------------------------------------- truth of one effect
@@ -331,33 +313,20 @@ def scale_marginal(spec):
         spec["fx"], spec["effects"] = merge_fx(spec["marginal"](float(f"{trial:.4g}")))
 
 
-def noise_spec(spec):
-    if spec["noise"] is not None:
-        return spec["noise"]
-    return {p: {"white": s} for p, s in WHITE[spec["regime"]].items()}
-
-
 def truth_entry(spec, sig):
     regime = spec["regime"]
     fs, dur = sf.REGIMES[regime]
-    ns = noise_spec(spec)
+    ns = recordkit.noise_or_white(spec, WHITE)
     return {
         "id": spec["id"], "class": spec["class"], "split": SPLIT, "motor": MOTOR,
         "netlist": NETLIST[regime], "regime": regime, "sample_rate_Hz": fs,
         "duration_s": dur, "csv": f"benchmarks/diagnosis/records/{spec['id']}.csv",
         "probes": list(sf.PROBES[regime]), "inputs": ["u"] if regime == "slow" else [],
-        "free": [], "declared_error": {}, "noise": ns, "noise_text": describe_noise(ns),
+        "free": [], "declared_error": {}, "noise": ns, "noise_text": recordkit.noise_text(ns),
         "seed": spec["seed"], "effects": spec["effects"], "declared_terms": [],
         "signature_sigma": sig, "marginal": spec["marginal"] is not None,
         "note": spec["note"],
     }
-
-
-def write_csv(path, t, cols):
-    names = list(cols)
-    arr = np.column_stack([t, *[cols[n] for n in names]])
-    np.savetxt(path, arr, delimiter=",", header=",".join(["time", *names]), comments="",
-               fmt="%.10g")
 
 
 def make(spec, write):
@@ -374,50 +343,17 @@ def make(spec, write):
         entry["separation_sigma"] = separation(regime, clean, same)
     if write:
         rng = np.random.default_rng(spec["seed"])
-        ns = noise_spec(spec)
+        ns = recordkit.noise_or_white(spec, WHITE)
         cols = {p: sf.add_noise(rng, clean[p], ns[p]) for p in sf.PROBES[regime]}
         if regime == "slow":
             cols["u"] = clean["u"]
         RECORDS.mkdir(exist_ok=True)
-        write_csv(RECORDS / f"{spec['id']}.csv", sf.grid(regime), cols)
+        recordkit.write_csv(RECORDS / f"{spec['id']}.csv", sf.grid(regime), cols)
     return entry
 
 
-def merge(entries):
-    data = json.loads(TRUTH.read_text()) if TRUTH.exists() else {"records": []}
-    new = {e["id"]: e for e in entries}
-    records = [new.pop(e["id"], e) for e in data["records"]]
-    records += list(new.values())
-    data["records"] = records
-    TRUTH.write_text(json.dumps(data, indent=1) + "\n")
-
-
-def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
-    ap.add_argument("--only", default="", help="record ids, comma-separated")
-    ap.add_argument("--truth-only", action="store_true", help="do not write CSVs")
-    args = ap.parse_args(argv)
-    only = {s.strip() for s in args.only.split(",") if s.strip()}
-    entries = []
-    t_all = time.perf_counter()
-    for spec in record_specs():
-        if only and spec["id"] not in only:
-            continue
-        t0 = time.perf_counter()
-        entry = make(spec, not args.truth_only)
-        entries.append(entry)
-        eff = ", ".join(f"{e['effect']} {e['expected']}" for e in entry["effects"]) or "-"
-        sig = ", ".join(f"{k} {v:.3g}" for k, v in entry["signature_sigma"].items())
-        extra = ""
-        if "unexplained_sigma" in entry:
-            u = entry["unexplained_sigma"]
-            extra = (f"; left by {u['best_single'][0]} {u['best_single'][1]:.3g}, by all "
-                     f"{u['all_scalar_effects_jointly']:.3g} of {u['imprint']:.3g}")
-        print(f"{spec['id']} {spec['class']:8s} F-{spec['regime']:4s} {eff} | signature {sig}"
-              f"{extra} ({time.perf_counter() - t0:.1f} s)", flush=True)
-    merge(entries)
-    print(f"{len(entries)} records in {time.perf_counter() - t_all:.1f} s")
-    return 0
+def main(argv: list[str] | None = None) -> int:
+    return recordkit.main(argv, __doc__, record_specs, make, "F")
 
 
 if __name__ == "__main__":

@@ -15,11 +15,8 @@ kept; an entry with the same id is replaced. Nobody ran the diagnosis on these r
 
 from __future__ import annotations
 
-import argparse
-import json
 import math
 import sys
-import time
 from pathlib import Path
 from typing import Any
 
@@ -28,6 +25,7 @@ import numpy as np
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
+import recordkit
 import simulators_g as sg
 
 RECORDS = HERE / "records"
@@ -365,48 +363,19 @@ def scale_marginal(s: dict) -> None:
     s["size"] = size
 
 
-def noise_of(s: dict) -> dict:
-    if s["noise"] is not None:
-        return s["noise"]
-    return {p: {"white": w} for p, w in WHITE[s["regime"]].items()}
-
-
-def noise_text(ns: dict) -> str:
-    words = []
-    for probe, d in ns.items():
-        bits = []
-        if d.get("white"):
-            bits.append(f"white sigma {d['white']:g}")
-        if d.get("ar1"):
-            bits.append(f"AR(1) sigma {d['ar1'][0]:g} phi {d['ar1'][1]:g}")
-        if d.get("pink"):
-            bits.append(f"1/f sigma {d['pink']:g}")
-        if d.get("quant"):
-            bits.append(f"ADC step {d['quant']:g}")
-        words.append(f"{probe}: " + ", ".join(bits))
-    return "; ".join(words)
-
-
 def truth_entry(s: dict, sig: dict) -> dict:
     regime = s["regime"]
     fs, dur = sg.REGIMES[regime]
-    ns = noise_of(s)
+    ns = recordkit.noise_or_white(s, WHITE)
     return {
         "id": s["id"], "class": s["class"], "split": SPLIT, "motor": MOTOR,
         "netlist": NETLIST[regime], "regime": regime, "sample_rate_Hz": fs,
         "duration_s": dur, "csv": f"benchmarks/diagnosis/records/{s['id']}.csv",
         "probes": list(sg.PROBES[regime]), "inputs": ["u"] if regime == "slow" else [],
-        "free": [], "declared_error": {}, "noise": ns, "noise_text": noise_text(ns),
+        "free": [], "declared_error": {}, "noise": ns, "noise_text": recordkit.noise_text(ns),
         "seed": s["seed"], "effects": s["effects"], "declared_terms": [],
         "signature_sigma": sig, "marginal": s["marginal"] is not None, "note": s["note"],
     }
-
-
-def write_csv(path: Path, t: np.ndarray, cols: dict) -> None:
-    names = list(cols)
-    data = np.column_stack([t, *(cols[n] for n in names)])
-    np.savetxt(path, data, delimiter=",", header=",".join(["time", *names]), comments="",
-               fmt="%.10g")
 
 
 def make(s: dict, write: bool) -> dict:
@@ -423,53 +392,17 @@ def make(s: dict, write: bool) -> dict:
         entry["separation_sigma"] = separation(regime, clean, same)
     if write:
         rng = np.random.default_rng(s["seed"])
-        ns = noise_of(s)
+        ns = recordkit.noise_or_white(s, WHITE)
         cols = {p: sg.add_noise(rng, clean[p], ns[p]) for p in sg.PROBES[regime]}
         if regime == "slow":
             cols["u"] = clean["u"]
         RECORDS.mkdir(exist_ok=True)
-        write_csv(RECORDS / f"{s['id']}.csv", sg.grid(regime), cols)
+        recordkit.write_csv(RECORDS / f"{s['id']}.csv", sg.grid(regime), cols)
     return entry
 
 
-def merge(entries: list[dict]) -> None:
-    data = json.loads(TRUTH.read_text()) if TRUTH.exists() else {"records": []}
-    new = {e["id"]: e for e in entries}
-    kept = [new.pop(e["id"], e) for e in data["records"]]
-    data["records"] = kept + list(new.values())
-    TRUTH.write_text(json.dumps(data, indent=1) + "\n")
-
-
-def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
-    ap.add_argument("--only", default="", help="record ids, comma-separated")
-    ap.add_argument("--truth-only", action="store_true", help="do not write CSVs")
-    args = ap.parse_args(argv)
-    only = {x.strip() for x in args.only.split(",") if x.strip()}
-    entries = []
-    t_all = time.perf_counter()
-    for s in record_specs():
-        if only and s["id"] not in only:
-            continue
-        t0 = time.perf_counter()
-        entry = make(s, not args.truth_only)
-        entries.append(entry)
-        sig = ", ".join(f"{k} {v:.3g}" for k, v in entry["signature_sigma"].items())
-        extra = ""
-        if "unexplained_sigma" in entry:
-            u = entry["unexplained_sigma"]
-            extra = (f"; left by {u['best_single'][0]} {u['best_single'][1]:.3g}, by all "
-                     f"{u['all_scalar_effects_jointly']:.3g} of {u['imprint']:.3g}")
-        if "separation_sigma" in entry:
-            sep = entry["separation_sigma"]
-            near = min(sep, key=sep.__getitem__)
-            extra += f"; nearest other effect {near} {sep[near]:.3g} sigma"
-        # the kind only: the effects themselves stay in truth.json
-        print(f"{s['id']} {s['class']:8s} G-{s['regime']:4s} | signature {sig}{extra} "
-              f"({time.perf_counter() - t0:.1f} s)", flush=True)
-    merge(entries)
-    print(f"{len(entries)} records in {time.perf_counter() - t_all:.1f} s")
-    return 0
+def main(argv: list[str] | None = None) -> int:
+    return recordkit.main(argv, __doc__, record_specs, make, "G")
 
 
 if __name__ == "__main__":

@@ -17,14 +17,8 @@ ran the diagnosis on these records.
 
 from __future__ import annotations
 
-import argparse
-import fcntl
-import json
 import math
-import os
 import sys
-import tempfile
-import time
 from pathlib import Path
 from typing import Any
 
@@ -33,6 +27,7 @@ import numpy as np
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
+import recordkit
 import simulators_k as sk
 
 RECORDS = HERE / "records"
@@ -387,11 +382,6 @@ def harmonic_alternatives(regime: str) -> dict[str, np.ndarray]:
     return _HARM[regime]
 
 
-def _left(y: np.ndarray, x: np.ndarray) -> float:
-    coef, *_ = np.linalg.lstsq(x, y, rcond=None)
-    return float(np.linalg.norm(y - x @ coef))
-
-
 def unexplained(regime: str, clean: dict) -> dict:
     """What the catalog's effects leave of an imprint [white sigma], linearised at the null:
     after the best single one, and after all of them at once (least squares). The
@@ -399,11 +389,11 @@ def unexplained(regime: str, clean: dict) -> dict:
     count as one effect of two columns."""
     y = imprint(regime, clean)
     alts = {**alternatives(regime), **harmonic_alternatives(regime)}
-    left = {k: _left(y, a) for k, a in alts.items()}
+    left = {k: recordkit.left(y, a) for k, a in alts.items()}
     best = min(left, key=left.__getitem__)
     x = np.column_stack(list(alts.values()))
     return {"imprint": float(np.linalg.norm(y)), "best_single": [best, left[best]],
-            "all_scalar_effects_jointly": _left(y, x),
+            "all_scalar_effects_jointly": recordkit.left(y, x),
             "note": "linearised; alternatives: " + ", ".join(alts)}
 
 
@@ -415,7 +405,7 @@ def separation(regime: str, clean: dict, same: set) -> dict[str, float]:
         kind = label.split(":")[0]
         if kind in same:
             continue
-        out[kind] = min(out.get(kind, math.inf), _left(y, a))
+        out[kind] = min(out.get(kind, math.inf), recordkit.left(y, a))
     return out
 
 
@@ -430,50 +420,19 @@ def scale_marginal(s: dict) -> None:
     s["size"] = size
 
 
-def noise_of(s: dict) -> dict:
-    if s["noise"] is not None:
-        return s["noise"]
-    return {p: {"white": w} for p, w in WHITE[s["regime"]].items()}
-
-
-def noise_text(ns: dict) -> str:
-    words = []
-    for probe, d in ns.items():
-        bits = []
-        if d.get("white"):
-            bits.append(f"white sigma {d['white']:g}")
-        if d.get("ar1"):
-            bits.append(f"AR(1) sigma {d['ar1'][0]:g} phi {d['ar1'][1]:g}")
-        if d.get("pink"):
-            bits.append(f"1/f sigma {d['pink']:g}")
-        if d.get("quant"):
-            bits.append(f"ADC step {d['quant']:g}")
-        words.append(f"{probe}: " + ", ".join(bits))
-    return "; ".join(words)
-
-
 def truth_entry(s: dict, sig: dict) -> dict:
     regime = s["regime"]
     fs, dur = sk.REGIMES[regime]
-    ns = noise_of(s)
+    ns = recordkit.noise_or_white(s, WHITE)
     return {
         "id": s["id"], "class": s["class"], "split": SPLIT, "motor": MOTOR,
         "netlist": NETLIST[regime], "regime": regime, "sample_rate_Hz": fs,
         "duration_s": dur, "csv": f"benchmarks/diagnosis/records/{s['id']}.csv",
         "probes": list(sk.PROBES[regime]), "inputs": ["u"] if regime == "slow" else [],
-        "free": [], "declared_error": {}, "noise": ns, "noise_text": noise_text(ns),
+        "free": [], "declared_error": {}, "noise": ns, "noise_text": recordkit.noise_text(ns),
         "seed": s["seed"], "effects": s["effects"], "declared_terms": [],
         "signature_sigma": sig, "marginal": s["marginal"] is not None, "note": s["note"],
     }
-
-
-def write_csv(path: Path, t: np.ndarray, cols: dict) -> None:
-    names = list(cols)
-    data = np.column_stack([t, *(cols[n] for n in names)])
-    tmp = path.with_name(f".{path.name}.tmp")
-    np.savetxt(tmp, data, delimiter=",", header=",".join(["time", *names]), comments="",
-               fmt="%.10g")
-    os.replace(tmp, path)
 
 
 def make(s: dict, write: bool) -> dict:
@@ -490,55 +449,17 @@ def make(s: dict, write: bool) -> dict:
         entry["separation_sigma"] = separation(regime, clean, same)
     if write:
         rng = np.random.default_rng(s["seed"])
-        ns = noise_of(s)
+        ns = recordkit.noise_or_white(s, WHITE)
         cols = {p: sk.add_noise(rng, clean[p], ns[p]) for p in sk.PROBES[regime]}
         if regime == "slow":
             cols["u"] = clean["u"]
         RECORDS.mkdir(exist_ok=True)
-        write_csv(RECORDS / f"{s['id']}.csv", sk.grid(regime), cols)
+        recordkit.write_csv(RECORDS / f"{s['id']}.csv", sk.grid(regime), cols)
     return entry
 
 
-def merge(entries: list[dict]) -> None:
-    """Replace the entries with these ids in truth.json, keeping every other one, under an
-    exclusive lock; written to a temporary file and moved into place."""
-    with open(LOCK, "a+") as lock:
-        fcntl.flock(lock, fcntl.LOCK_EX)
-        try:
-            data = json.loads(TRUTH.read_text()) if TRUTH.exists() else {"records": []}
-            new = {e["id"]: e for e in entries}
-            kept = [new.pop(e["id"], e) for e in data["records"]]
-            data["records"] = kept + list(new.values())
-            fd, tmp = tempfile.mkstemp(prefix=".truth.", suffix=".tmp", dir=HERE)
-            with os.fdopen(fd, "w") as f:
-                f.write(json.dumps(data, indent=1) + "\n")
-            os.chmod(tmp, 0o644)
-            os.replace(tmp, TRUTH)
-        finally:
-            fcntl.flock(lock, fcntl.LOCK_UN)
-
-
-def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
-    ap.add_argument("--only", default="", help="record ids, comma-separated")
-    ap.add_argument("--truth-only", action="store_true", help="do not write CSVs")
-    args = ap.parse_args(argv)
-    only = {x.strip() for x in args.only.split(",") if x.strip()}
-    entries = []
-    t_all = time.perf_counter()
-    for s in record_specs():
-        if only and s["id"] not in only:
-            continue
-        t0 = time.perf_counter()
-        entry = make(s, not args.truth_only)
-        entries.append(entry)
-        sig = ", ".join(f"{k} {v:.3g}" for k, v in entry["signature_sigma"].items())
-        # the class only: the effects themselves stay in truth.json
-        print(f"{s['id']} {s['class']:8s} K-{s['regime']:4s} | signature {sig} "
-              f"({time.perf_counter() - t0:.1f} s)", flush=True)
-    merge(entries)
-    print(f"{len(entries)} records in {time.perf_counter() - t_all:.1f} s")
-    return 0
+def main(argv: list[str] | None = None) -> int:
+    return recordkit.main(argv, __doc__, record_specs, make, "K")
 
 
 if __name__ == "__main__":

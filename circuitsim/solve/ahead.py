@@ -7,7 +7,11 @@ second a topology. On a machine with two cores or more, a worker process
 the cache folder they share, one at a time in the order given. Before compiling a topology
 itself the caller claims it: one the worker finished is read from the cache, one the worker is
 compiling is waited for, one still queued is taken off the queue and compiled here. The
-numbers are the same either way; only who pays the compile changes.
+numbers are the same either way; only who pays the compile changes. Topologies needed only
+at the end (a diagnosis's law test) wait in a second line, compiled when the first is empty
+and left alone when the first is replaced. A topology the caller compiles itself is shared
+too: while it compiles the residual's kernel, the Jacobian's is lent to the worker (``lend``,
+at the head of the queue), and loaded from the cache once the worker has it.
 
 A plain subprocess with a pipe, not ``multiprocessing``: that would re-run the user's main
 script in the worker. ``CIRCUITSIM_AHEAD=off`` turns it off; it is off without numba, without
@@ -117,16 +121,30 @@ class _Worker:
                     queued.add(key)
             self._next()
 
+    def lend(self, key: str, payload: Any) -> None:
+        """Put a job at the head of the queue (a caller waits for it soon)."""
+        with self.cond:
+            if key in self.done or key == self.running:
+                return
+            self.queue = [(key, payload), *((k, r) for k, r in self.queue if k != key)]
+            self._next()
+
     def claim(self, raw) -> None:
         key = _key(raw)
-        if key is None:
-            return
+        if key is not None:
+            self.claim_key(key)
+
+    def claim_key(self, key: str, sent: bool = False) -> None:
+        """Take the job back when it is queued, else wait while the worker compiles it (and,
+        with ``sent``, while it is sent: a lent job starts at once)."""
         with self.cond:
             self.queue = [(k, r) for k, r in self.queue if k != key]
             self.later = [(k, r) for k, r in self.later if k != key]
-            # a job the worker still checks (or imports for) is not waited for: the caller
-            # may load it from the cache, or compile it, as fast
-            self.cond.wait_for(lambda: self.compiling != key, timeout=WAIT)
+            # a topology the worker still checks (or imports for) is not waited for: the
+            # caller may load it from the cache, or compile it, as fast
+            self.cond.wait_for(lambda: self.compiling != key and not (sent and
+                                                                      self.running == key),
+                               timeout=WAIT)
 
     def close(self) -> None:
         with self.cond:
@@ -158,10 +176,13 @@ def _worker() -> _Worker | None:
         old.close()
     _WORKER[:] = [None]
     if why is None and enabled():
+        from circuitsim.solve import direct
+
         try:
             _WORKER[0] = _Worker(folder)
         except OSError:
             return None
+        direct.lend_to(lend, claim_job)
     return _WORKER[0]
 
 
@@ -230,6 +251,37 @@ def claim(raw) -> None:
         worker.claim(raw)
 
 
+def lend(model_key: str, source: str, names: list[str]) -> str | None:
+    """Have the worker compile the cfuncs ``names`` of a model's kernel module (its key and
+    ``source``) now, before anything queued, while the caller compiles others; the job's key
+    for ``claim_job``, or None without a worker (the caller compiles them itself)."""
+    worker = _WORKER[0] if _WORKER else None
+    if worker is None or not worker.alive or not enabled():
+        return None
+    key = f"kernels {model_key} {' '.join(names)}"
+    worker.lend(key, ("kernels", model_key, source, tuple(names)))
+    return key
+
+
+def claim_job(key: str) -> None:
+    """Before doing a lent job here: take it back when the worker has not started on it, or
+    wait for the worker to finish it."""
+    worker = _WORKER[0] if _WORKER else None
+    if worker is not None:
+        worker.claim_key(key, sent=True)
+
+
+def _compile_kernels(model_key: str, source: str, names: tuple[str, ...], folder: Path,
+                     started) -> None:
+    """The worker's lent job: cfuncs of one kernel module, into numba's cache."""
+    from circuitsim.solve import direct
+
+    started()
+    module = direct.kernel_module(folder, model_key, source)
+    for name in names:
+        direct.cfunc(module, name)
+
+
 def _compile(raw, folder: Path, started) -> None:
     """The worker's job: the topology's model and all its kernels, into the cache (nothing
     when numba keeps the kernels of that topology already: the caller loads them as fast)."""
@@ -263,9 +315,12 @@ def main() -> None:
         stdout.flush()
 
     while head := stdin.read(8):
-        key, raw = pickle.loads(stdin.read(struct.unpack("<Q", head)[0]))
+        key, job = pickle.loads(stdin.read(struct.unpack("<Q", head)[0]))
         try:
-            _compile(raw, folder, lambda key=key: say("start", key))
+            if isinstance(job, tuple) and job[0] == "kernels":
+                _compile_kernels(*job[1:], folder, lambda key=key: say("start", key))
+            else:
+                _compile(job, folder, lambda key=key: say("start", key))
         except Exception:  # noqa: BLE001, S110 - the caller compiles it itself and reports
             pass
         say("done", key)

@@ -31,6 +31,7 @@ import ctypes
 import functools
 import importlib.util
 import sys
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -139,11 +140,16 @@ def kernels(model) -> Any | None:
     folder, why = open_cache_dir()
     if why is not None:
         return None
-    _kernel_lib(folder)
-    name = f"circuitsim_kernels_{model.key}"
-    module = _import(name, _trusted_file(folder, f"{model.key}_kernels", source))
+    module = kernel_module(folder, model.key, source)
     _LOADED[model.key] = module
     return module
+
+
+def kernel_module(folder: Path, key: str, source: str) -> Any:
+    """The kernel module of the model ``key`` from its ``source``, written into the trusted
+    cache ``folder`` and imported from there."""
+    _kernel_lib(folder)
+    return _import(f"circuitsim_kernels_{key}", _trusted_file(folder, f"{key}_kernels", source))
 
 
 def cfunc(module, name: str) -> Any:
@@ -156,6 +162,43 @@ def cfunc(module, name: str) -> Any:
         sig = getattr(module, module.CFUNCS[name])
         held[name] = numba.cfunc(sig, cache=True, error_model="numpy")(getattr(module, name))
     return held[name]
+
+
+def _kept(module, name: str) -> bool:
+    """Whether numba keeps machine code of the module's function ``name`` in the cache."""
+    path = Path(module.__file__)
+    return any((path.parent / "__pycache__").glob(f"{path.stem}.{name}-*.nbi"))
+
+
+#: (lend, claim) of the compile-ahead worker once one runs (``solve/ahead.py`` sets them:
+#: it imports this module, not the other way round)
+_LENDER: list[tuple[Callable, Callable]] = []
+
+
+def lend_to(lend: Callable[[str, str, list[str]], str | None], claim: Callable[[str], None]
+            ) -> None:
+    """Hand a model's Jacobian kernels to ``lend`` (model key, kernel source, names -> a job
+    or None) while this process compiles the residual's; ``claim`` (the job) before using
+    them."""
+    _LENDER[:] = [(lend, claim)]
+
+
+def _compile_shared(module, model, names: tuple[str, ...]) -> None:
+    """The cfuncs ``names`` of a model's kernels. The residual's and the Jacobian's are
+    compiled from functions of their own, and a Jacobian not kept yet is lent to the
+    compile-ahead worker (``lend_to``) while this process compiles the residual: numba keeps
+    it in the cache both share, and it is loaded from there (or compiled here when the worker
+    had not started on it)."""
+    held = module.__dict__.get("_COMPILED", {})
+    todo = [n for n in names if n not in held and not _kept(module, n)]
+    lent = [n for n in todo[1:] if n.startswith("jacobian") and not _kept(module, "_jacobian_at")]
+    job = _LENDER[0][0](model.key, model.meta["kernels"], lent) if lent and _LENDER else None
+    for name in todo[:1]:
+        cfunc(module, name)
+    if job is not None:
+        _LENDER[0][1](job)
+    for name in names:
+        cfunc(module, name)
 
 
 class DirectIDA:
@@ -319,8 +362,8 @@ def ida_for(opts: dict) -> DirectIDA | None:
             data = (_table_data(model, opts["userdata"]) if members is None else
                     _with_tables([float(len(members))] + [v for q in members for v in q],
                                  model.table_points()))
-        for name in _used(kind, opts) if kind is not None else ():
-            cfunc(module, name)  # compiled here, where a failure means the Python route
+        if kind is not None:  # compiled here, where a failure means the Python route
+            _compile_shared(module, model, _used(kind, opts))
     except Exception as exc:  # noqa: BLE001 - numba and the libraries fail in many ways
         _LOADED[model.key] = None
         _warn_once(exc)

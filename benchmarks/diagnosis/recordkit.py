@@ -1,0 +1,133 @@
+"""What the record generators of the later sets share (``make_records_d.py`` ...
+``make_records_k.py``): the noise's text, the writers of a record's CSV and of truth.json, and
+the command line. Each set's simulator and its records stay in its own modules, written
+independently; nothing here simulates or imports circuitsim.
+
+truth.json is merged under an exclusive lock (``.truth.lock``: several generators may merge
+their own ids at once): every other entry is kept, an entry with the same id is replaced in
+place, a new one is appended, and the file is replaced atomically. A CSV is written to a
+temporary name and moved into place, so an interrupted run leaves no half-written record.
+"""
+
+from __future__ import annotations
+
+import argparse
+import fcntl
+import json
+import os
+import tempfile
+import time
+from collections.abc import Callable, Iterable, Mapping
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+HERE = Path(__file__).resolve().parent
+RECORDS = HERE / "records"
+TRUTH = HERE / "truth.json"
+LOCK = HERE / ".truth.lock"
+
+
+def noise_text(ns: Mapping[str, Mapping[str, Any]]) -> str:
+    """The record's noise in words, per probe (white, AR(1), 1/f, ADC step)."""
+    words = []
+    for probe, d in ns.items():
+        bits = []
+        if d.get("white"):
+            bits.append(f"white sigma {d['white']:g}")
+        if d.get("ar1"):
+            bits.append(f"AR(1) sigma {d['ar1'][0]:g} phi {d['ar1'][1]:g}")
+        if d.get("pink"):
+            bits.append(f"1/f sigma {d['pink']:g}")
+        if d.get("quant"):
+            bits.append(f"ADC step {d['quant']:g}")
+        words.append(f"{probe}: " + ", ".join(bits))
+    return "; ".join(words)
+
+
+def noise_or_white(spec: Mapping[str, Any], white: Mapping[str, Mapping[str, float]]
+                   ) -> dict[str, dict[str, Any]]:
+    """The record's noise per probe: its own, else white noise of the regime's ``white``
+    sigma [probe unit] on each probe."""
+    if spec["noise"] is not None:
+        return spec["noise"]
+    return {p: {"white": s} for p, s in white[spec["regime"]].items()}
+
+
+def left(y: np.ndarray, x: np.ndarray) -> float:
+    """What least squares on the columns of ``x`` leaves of ``y`` (the residual's norm)."""
+    coef, *_ = np.linalg.lstsq(x, y, rcond=None)
+    return float(np.linalg.norm(y - x @ coef))
+
+
+def write_csv(path: Path, t: np.ndarray, cols: Mapping[str, np.ndarray]) -> None:
+    """A record: ``time`` [s] and one column per name, to 10 significant digits."""
+    names = list(cols)
+    data = np.column_stack([t, *(cols[n] for n in names)])
+    path.parent.mkdir(exist_ok=True)
+    tmp = path.with_name(f".{path.name}.tmp")
+    np.savetxt(tmp, data, delimiter=",", header=",".join(["time", *names]), comments="",
+               fmt="%.10g")
+    os.replace(tmp, path)
+
+
+def merge(entries: Iterable[dict[str, Any]]) -> None:
+    """Put ``entries`` into truth.json (see the module docstring)."""
+    with open(LOCK, "a+") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        try:
+            data = json.loads(TRUTH.read_text()) if TRUTH.exists() else {"records": []}
+            new = {e["id"]: e for e in entries}
+            kept = [new.pop(e["id"], e) for e in data["records"]]
+            data["records"] = kept + list(new.values())
+            fd, tmp = tempfile.mkstemp(prefix=".truth-", suffix=".json", dir=HERE)
+            try:
+                with os.fdopen(fd, "w") as f:
+                    f.write(json.dumps(data, indent=1) + "\n")
+                os.chmod(tmp, 0o644)
+                os.replace(tmp, TRUTH)
+            except BaseException:
+                if os.path.exists(tmp):
+                    os.unlink(tmp)
+                raise
+        finally:
+            fcntl.flock(lock, fcntl.LOCK_UN)
+
+
+def _line(entry: Mapping[str, Any], motor: str, seconds: float) -> str:
+    """A record's line of progress: its class and what the truth says of its size (the
+    effects themselves stay in truth.json)."""
+    sig = ", ".join(f"{k} {v:.3g}" for k, v in entry["signature_sigma"].items())
+    extra = ""
+    if "unexplained_sigma" in entry:
+        u = entry["unexplained_sigma"]
+        extra = (f"; left by the best single {u['best_single'][1]:.3g}, by all "
+                 f"{u['all_scalar_effects_jointly']:.3g} of {u['imprint']:.3g}")
+    if entry.get("separation_sigma"):
+        extra += f"; nearest other effect {min(entry['separation_sigma'].values()):.3g} sigma"
+    return (f"{entry['id']} {entry['class']:8s} {motor}-{entry['regime']:4s} | signature "
+            f"{sig}{extra} ({seconds:.1f} s)")
+
+
+def main(argv: list[str] | None, doc: str | None,
+         record_specs: Callable[[], Iterable[dict[str, Any]]],
+         make: Callable[[dict[str, Any], bool], dict[str, Any]], motor: str) -> int:
+    """A generator's command line: make the records (or those of ``--only``), write their
+    CSVs (not with ``--truth-only``) and merge their truth."""
+    ap = argparse.ArgumentParser(description=(doc or "").splitlines()[0])
+    ap.add_argument("--only", default="", help="record ids, comma-separated")
+    ap.add_argument("--truth-only", action="store_true", help="do not write CSVs")
+    args = ap.parse_args(argv)
+    only = {x.strip() for x in args.only.split(",") if x.strip()}
+    entries = []
+    t_all = time.perf_counter()
+    for spec in record_specs():
+        if only and spec["id"] not in only:
+            continue
+        t0 = time.perf_counter()
+        entries.append(make(spec, not args.truth_only))
+        print(_line(entries[-1], motor, time.perf_counter() - t0), flush=True)
+    merge(entries)
+    print(f"{len(entries)} records in {time.perf_counter() - t_all:.1f} s")
+    return 0
