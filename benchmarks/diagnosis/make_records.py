@@ -29,6 +29,7 @@ import numpy as np
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
+import recordkit
 import simulators as sims
 
 RECORDS = HERE / "records"
@@ -530,22 +531,6 @@ def noise_spec(spec) -> dict:
             if p in probes_of(spec)}
 
 
-def describe_noise(ns: dict) -> str:
-    out = []
-    for p, d in ns.items():
-        parts = []
-        if d.get("white"):
-            parts.append(f"white sigma {d['white']:g}")
-        if d.get("ar1"):
-            parts.append(f"AR(1) sigma {d['ar1'][0]:g} phi {d['ar1'][1]:g}")
-        if d.get("pink"):
-            parts.append(f"1/f sigma {d['pink']:g}")
-        if d.get("quant"):
-            parts.append(f"ADC step {d['quant']:g}")
-        out.append(f"{p}: " + ", ".join(parts))
-    return "; ".join(out)
-
-
 def truth_entry(spec, effects, sig) -> dict:
     motor, regime = spec["motor"], spec["regime"]
     fs, dur, netlist = REGIMES[(motor, regime)]
@@ -562,19 +547,12 @@ def truth_entry(spec, effects, sig) -> dict:
         "probes": probes_of(spec),
         "inputs": ["u"] if (motor, regime) == ("B", "slow") else [],
         "free": spec["free"], "declared_error": declared_error,
-        "noise": ns, "noise_text": describe_noise(ns), "seed": spec["seed"],
+        "noise": ns, "noise_text": recordkit.noise_text(ns), "seed": spec["seed"],
         "effects": effects, "declared_terms": DECLARED[motor],
         "signature_sigma": sig, "marginal": spec["marginal"], "note": spec["note"],
         **({"signature_sigma_beyond_vanishing": spec["signature_beyond"]}
            if "signature_beyond" in spec else {}),
     }
-
-
-def write_csv(path: Path, t, cols: dict) -> None:
-    names = list(cols)
-    arr = np.column_stack([t, *[cols[n] for n in names]])
-    header = ",".join(["time", *names])
-    np.savetxt(path, arr, delimiter=",", header=header, comments="", fmt="%.10g")
 
 
 def main() -> int:
@@ -602,7 +580,7 @@ def main() -> int:
             cols = {p: sims.add_noise(rng, clean[p], ns[p]) for p in probes_of(spec)}
             if "u" in clean:
                 cols["u"] = clean["u"]
-            write_csv(RECORDS / f"{spec['id']}.csv", _grid(spec["motor"], spec["regime"]), cols)
+            recordkit.write_csv(RECORDS / f"{spec['id']}.csv", _grid(spec["motor"], spec["regime"]), cols)
         print(f"{spec['id']} {spec['class']:8s} {spec['motor']}-{spec['regime']:4s} "
               f"{spec['split']:7s} {', '.join(e['effect'] for e in effects) or '-':45s} "
               f"signature {', '.join(f'{k} {v:.3g}' for k, v in sig.items())} "
