@@ -45,6 +45,26 @@ def test_values_do_not_change_the_key_but_structure_does(write_netlist):
     assert a.topology_key() == b.topology_key() != c.topology_key()
 
 
+def test_new_kernel_helpers_never_meet_a_model_cached_before(monkeypatch):
+    # the generated kernels import the shared helpers under a name that is their source's
+    # hash: a model cached with other helpers would name a module no longer written (and
+    # quietly run on the Python route), so the helpers' source is part of every model's key
+    from pathlib import Path
+
+    from circuitsim.compiler import cache
+
+    topology = cs.load(NETLISTS / "examples" / "dc_motor.yaml").topology_key()
+    before = cache.cache_key(topology)
+    read = Path.read_bytes
+
+    def edited(path):
+        data = read(path)
+        return data + b"# edited" if path.name == "kernel_lib.py" else data
+
+    monkeypatch.setattr(Path, "read_bytes", edited)
+    assert cache.cache_key(topology) != before
+
+
 def test_compiled_model_pickles_for_worker_processes():
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")

@@ -21,12 +21,15 @@ from circuitsim.memo import cache_dir, open_cache_dir  # noqa: F401 - cache_dir:
 
 def _code_fingerprint() -> str:
     """Hash of the derivation code and the component library, so an edited component or
-    pipeline stage never meets a stale cached model."""
+    pipeline stage never meets a stale cached model; and of the helpers the generated kernels
+    import by a name that changes with them (``solve/kernel_lib.py``): a model cached before
+    would name helpers no longer written, and run on the Python route."""
     import circuitsim_components
 
     h = hashlib.sha256()
     root = Path(__file__).parents[1]
     files = [root / "component.py", root / "symfunc.py", root / "units.py", root / "errors.py",
+             root / "solve" / "kernel_lib.py",
              *sorted((root / "netlist").glob("*.py")), *sorted((root / "compiler").glob("*.py")),
              *sorted(Path(circuitsim_components.__file__).parent.glob("*.py"))]
     for f in files:

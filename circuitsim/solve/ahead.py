@@ -80,6 +80,8 @@ class _Worker:
                 if what == "start":
                     self.compiling = key
                     continue
+                if what != "done":  # not a report (a stray print in the worker)
+                    continue
                 self.done.add(key)
                 self.running = self.compiling = None
                 self._next()
@@ -255,8 +257,11 @@ def lend(model_key: str, source: str, names: list[str]) -> str | None:
     """Have the worker compile the cfuncs ``names`` of a model's kernel module (its key and
     ``source``) now, before anything queued, while the caller compiles others; the job's key
     for ``claim_job``, or None without a worker (the caller compiles them itself)."""
+    from circuitsim.memo import open_cache_dir
+
     worker = _WORKER[0] if _WORKER else None
-    if worker is None or not worker.alive or not enabled():
+    if worker is None or not worker.alive or not enabled() or \
+            open_cache_dir()[0] != worker.folder:  # it compiles into another folder
         return None
     key = f"kernels {model_key} {' '.join(names)}"
     worker.lend(key, ("kernels", model_key, source, tuple(names)))

@@ -193,9 +193,10 @@ def _compile_shared(module, model, names: tuple[str, ...]) -> None:
     todo = [n for n in names if n not in held and not _kept(module, n)]
     lent = [n for n in todo[1:] if n.startswith("jacobian") and not _kept(module, "_jacobian_at")]
     job = _LENDER[0][0](model.key, model.meta["kernels"], lent) if lent and _LENDER else None
-    for name in todo[:1]:
-        cfunc(module, name)
-    if job is not None:
+    if job is not None:  # what is not lent, here meanwhile; then the lent, from the cache
+        for name in todo:
+            if name not in lent:
+                cfunc(module, name)
         _LENDER[0][1](job)
     for name in names:
         cfunc(module, name)
