@@ -113,27 +113,8 @@ def main() -> int:
     warnings.simplefilter("ignore")
     import circuitsim as cs
 
-    worst = max(compare(cs, r, "null", {}) for r in ("fast", "slow"))
-    for s in record_specs():
-        regime = s["regime"]
-        if s["marginal"] is not None:
-            scale_marginal(s)
-        if s["class"] in ("catalog", "two"):
-            raw, values = patched(cs.load(NETLISTS[regime]), regime, s["effects"])
-            label = s["id"] + " " + " + ".join(e["effect"] + "@" + e["target"]
-                                               for e in s["effects"])
-            worst = max(worst, compare(cs, regime, label, s["fx"], raw, values))
-        else:
-            law = next((f for k, f in OUTSIDE_LAWS.items() if k in s["fx"]), None)
-            if law is None:
-                continue
-            raw = cs.load(NETLISTS[regime]).raw.copy()
-            law(raw, s["fx"])
-            worst = max(worst, compare(cs, regime, f"{s['id']} outside, as components",
-                                       s["fx"], raw))
-    print(f"worst max |diff|/range {worst:.2e} -> {'OK' if worst < TARGET else 'ABOVE'} "
-          f"(target {TARGET:g})")
-    return 0 if worst < TARGET else 1
+    return crosscheck.check_set(cs, "G", record_specs(), scale_marginal, patched,
+                                OUTSIDE_LAWS, compare, NETLISTS, TARGET)
 
 
 if __name__ == "__main__":
