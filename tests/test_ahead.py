@@ -31,7 +31,14 @@ analysis: {{stop: 4 ms, step: 10 us}}
 @pytest.fixture
 def fresh(tmp_path, monkeypatch, write_netlist):
     """A cache folder of its own, kernels on, and a raw netlist maker: one topology a tag
-    (the resistor's name), so that no test meets kernels this process loaded for another."""
+    (the resistor's name). Its kernels are one module whatever the tag (they are named by
+    their source), so the modules this process loaded before are forgotten: no test meets
+    kernels loaded for another."""
+    import sys
+
+    for name in [n for n in sys.modules if n.startswith("circuitsim_kernels_")]:
+        monkeypatch.delitem(sys.modules, name)
+    monkeypatch.setattr(direct, "_LOADED", {})
     monkeypatch.setenv("CIRCUITSIM_CACHE", str(tmp_path / "cache"))
     monkeypatch.setenv("CIRCUITSIM_KERNELS", "numba")
     monkeypatch.delenv("CIRCUITSIM_AHEAD", raising=False)
@@ -77,15 +84,6 @@ def test_the_worker_fills_the_cache_the_caller_reads(fresh, monkeypatch):
     assert with_kernels.success and np.array_equal(with_kernels.y, plain.y)
 
 
-def _kept_since(raw) -> float:
-    """When numba wrote the first of the topology's kept kernels [s since the epoch]."""
-    from circuitsim.compiler.cache import cache_key
-    from circuitsim.netlist.load import build
-
-    key = cache_key(build(raw).topology_key())
-    return min(f.stat().st_mtime for f in (direct_cache() / "__pycache__").glob(f"{key}_*"))
-
-
 def direct_cache():
     from circuitsim.memo import cache_dir
 
@@ -105,39 +103,17 @@ def test_a_claim_takes_a_queued_topology_back(fresh):
     assert ahead._key(third) not in worker.done
 
 
-def test_the_later_line_waits_and_survives_a_replace(fresh):
-    first, soon, late = fresh("l1"), fresh("l2"), fresh("l3")
-    ahead.expect([first])  # the worker takes it at once: the others queue behind it
-    worker = ahead._WORKER[0]
-    with worker.cond:  # held (it is re-entrant): the worker's reports wait till the checks
-        ahead.expect([late], later=True)
-        ahead.expect([soon], replace=True)  # a round's guesses replaced: the later line stays
-        assert [k for k, _ in worker.later] == [ahead._key(late)]
-        assert [k for k, _ in worker.queue] == [ahead._key(soon)]
-    assert _wait_done(soon) and _wait_done(late)
-    assert _kept_since(late) >= _kept_since(soon)  # compiled after what was needed sooner
-    # a topology needed soon that waited in the later line moves up
-    a, b = fresh("l4"), fresh("l5")
-    with worker.cond:
-        worker.running = "busy"  # held idle while the lines are arranged
-    ahead.expect([a], later=True)
-    ahead.expect([b, a])
-    with worker.cond:
-        assert [k for k, _ in worker.queue] == [ahead._key(b), ahead._key(a)]
-        assert not worker.later
-        worker.queue.clear()
-        worker.running = None
-
-
 def test_a_lent_jacobian_is_compiled_by_the_worker_and_loaded_here(fresh, monkeypatch):
-    other, raw = fresh("m1"), fresh("m2")
+    # another topology, of other code: the worker holds no kernels of the lent one's
+    other, raw = fresh("m1", "  - {name: R2, type: R, p: out, n: gnd, R: 1 Mohm}"), fresh("m2")
     ahead.expect([other])  # the worker is up
     assert _wait_done(other)
     model = _compiled(raw)
     module = direct.kernels(model)
     direct._compile_shared(module, model, ("residual", "jacobian"))
     worker = ahead._WORKER[0]
-    assert f"kernels {model.key} jacobian" in worker.done  # compiled there, not here
+    # compiled there, not here
+    assert f"kernels {direct.kernel_name(model.meta['kernels'])} jacobian" in worker.done
     assert direct.cfunc(module, "jacobian").cache_hits  # and loaded from the cache
     assert not direct.cfunc(module, "residual").cache_hits  # this one compiled here
     with_kernels = model.simulate()

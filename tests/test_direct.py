@@ -427,3 +427,29 @@ def test_a_second_table_is_read_where_it_lies(compile_text, tmp_path, monkeypatc
     # the algebraic current to the integrator's tolerance; a row off would be 1 % and more
     np.testing.assert_allclose(kernels["i2"], np.interp(kernels.t, t, 3 + t * 100) / 2,
                                rtol=1e-9)
+
+
+def test_topologies_of_the_same_code_share_one_kernel_module(compile_text, monkeypatch):
+    """A cogging of order 4 and one of order 6, on parts of different names: two models, one
+    kernel module (the order is a run-time parameter, the module is named by its source), and
+    each runs on it to the bit of its own Python route -- with its own order: the energy
+    1/2 J w^2 + (T/N) cos(N phi) of each is constant."""
+    from circuitsim.solve import direct
+
+    text = """
+        components:
+          - {name: CG%d, type: cogging, shaft: s,
+             harmonics: [{order: %d, amplitude: 0.01 N*m, phase: 0}]}
+          - {name: Jr, type: inertia, shaft: s, J: 1e-5, w0: 50 rad/s}
+        probes: {w: s.w, phi: s.phi}
+        analysis: {stop: 0.2, step: 0.1 ms, rtol: 1e-11, atol: 1e-13}
+    """
+    four, six = (compile_text(text % (n, n)) for n in (4, 6))
+    assert four.key != six.key
+    assert direct.kernels(four) is direct.kernels(six)
+    for model, n in ((four, 4), (six, 6)):
+        python, kernels = _both(model, monkeypatch)
+        _same(python, kernels)
+        w, phi = kernels["w"], kernels["phi"]
+        energy = 0.5 * 1e-5 * w ** 2 + 0.01 / n * np.cos(n * phi)
+        assert np.ptp(energy) < 1e-8 * energy[0]

@@ -7,11 +7,13 @@ second a topology. On a machine with two cores or more, a worker process
 the cache folder they share, one at a time in the order given. Before compiling a topology
 itself the caller claims it: one the worker finished is read from the cache, one the worker is
 compiling is waited for, one still queued is taken off the queue and compiled here. The
-numbers are the same either way; only who pays the compile changes. Topologies needed only
-at the end (a diagnosis's law test) wait in a second line, compiled when the first is empty
-and left alone when the first is replaced. A topology the caller compiles itself is shared
-too: while it compiles the residual's kernel, the Jacobian's is lent to the worker (``lend``,
-at the head of the queue), and loaded from the cache once the worker has it.
+numbers are the same either way; only who pays the compile changes. A caller queues its
+guesses as well (a diagnosis: the circuits its next step needs if the best candidate wins,
+and those it needs if none does), in the order they would be needed, and replaces them when
+it knows more. The kernels are named by their source (``direct.kernel_name``): topologies
+whose equations give the same code share one compile. A topology the caller compiles itself
+is shared too: while it compiles the residual's kernel, the Jacobian's is lent to the worker
+(``lend``, at the head of the queue), and loaded from the cache once the worker has it.
 
 A plain subprocess with a pipe, not ``multiprocessing``: that would re-run the user's main
 script in the worker. ``CIRCUITSIM_AHEAD=off`` turns it off; it is off without numba, without
@@ -62,9 +64,6 @@ class _Worker:
                                      stderr=subprocess.DEVNULL, env=env)
         self.cond = threading.Condition()
         self.queue: list[tuple[str, Any]] = []
-        # needed at the end, not soon: compiled when the queue is empty, kept when it is
-        # replaced (a diagnosis's law test, while its rounds queue and drop their guesses)
-        self.later: list[tuple[str, Any]] = []
         self.running: str | None = None  # sent to the worker
         self.compiling: str | None = None  # the worker found it not compiled yet: at work
         self.done: set[str] = set()
@@ -89,14 +88,13 @@ class _Worker:
         with self.cond:
             self.alive, self.running, self.compiling = False, None, None
             self.queue.clear()
-            self.later.clear()
             self.cond.notify_all()
 
     def _next(self) -> None:
         """Send the first queued job when the worker is idle (the caller holds the lock)."""
-        if self.running is not None or not (self.queue or self.later) or not self.alive:
+        if self.running is not None or not self.queue or not self.alive:
             return
-        key, raw = (self.queue or self.later).pop(0)
+        key, raw = self.queue.pop(0)
         blob = pickle.dumps((key, raw), protocol=4)
         try:
             self.proc.stdin.write(struct.pack("<Q", len(blob)) + blob)
@@ -106,20 +104,16 @@ class _Worker:
             return
         self.running = key
 
-    def submit(self, raws: Iterable[Any], replace: bool, later: bool = False) -> None:
+    def submit(self, raws: Iterable[Any], replace: bool) -> None:
         with self.cond:
-            line = self.later if later else self.queue
             if replace:
-                line.clear()
-            # a topology needed soon leaves the later line; one needed later and queued
-            # for soon already stays there
-            queued = {k for k, _ in (*self.queue, *(() if not later else self.later))}
+                self.queue.clear()
+            queued = {k for k, _ in self.queue}
             for raw in raws:
                 key = _key(raw)
-                if key is not None and key not in self.done and key != self.running and key not in queued:
-                    if not later:
-                        self.later[:] = [(k, r) for k, r in self.later if k != key]
-                    line.append((key, raw))
+                if key is not None and key not in self.done and key != self.running and \
+                        key not in queued:
+                    self.queue.append((key, raw))
                     queued.add(key)
             self._next()
 
@@ -141,7 +135,6 @@ class _Worker:
         with ``sent``, while it is sent: a lent job starts at once)."""
         with self.cond:
             self.queue = [(k, r) for k, r in self.queue if k != key]
-            self.later = [(k, r) for k, r in self.later if k != key]
             # a topology the worker still checks (or imports for) is not waited for: the
             # caller may load it from the cache, or compile it, as fast
             self.cond.wait_for(lambda: self.compiling != key and not (sent and
@@ -151,7 +144,6 @@ class _Worker:
     def close(self) -> None:
         with self.cond:
             self.queue.clear()
-            self.later.clear()
         try:
             self.proc.stdin.close()
             # a compile it is at is not waited for long: numba and the model cache write
@@ -211,12 +203,10 @@ def _cores() -> int:
     return os.cpu_count() or 1
 
 
-def expect(raws: Iterable[Any], replace: bool = False, later: bool = False) -> None:
+def expect(raws: Iterable[Any], replace: bool = False) -> None:
     """Queue raw netlists whose topologies will be needed soon, in order of need (after the
-    queued ones; ``replace``: instead of them). ``later``: needed only at the end, compiled
-    when nothing else is queued, in a line of their own that the soon-needed ones' ``replace``
-    leaves alone. Those whose kernels numba keeps already are left out, and no worker is
-    started for none (a warm cache: it would only compete)."""
+    queued ones; ``replace``: instead of them). Those whose kernels numba keeps already are
+    left out, and no worker is started for none (a warm cache: it would only compete)."""
     if not enabled():
         return
     from circuitsim.memo import cache_dir
@@ -225,17 +215,20 @@ def expect(raws: Iterable[Any], replace: bool = False, later: bool = False) -> N
     todo = [raw for raw in raws if not _kept(raw, folder)]
     worker = _worker() if todo or (_WORKER and _WORKER[0] is not None) else None
     if worker is not None:
-        worker.submit(todo, replace, later)
+        worker.submit(todo, replace)
 
 
 def _kept(raw, folder: Path) -> bool:
-    """Whether numba keeps kernels of the raw netlist's topology in the cache folder (also
-    when the netlist cannot be built: nothing to compile ahead)."""
+    """Whether numba keeps the kernels of the raw netlist's topology in the cache folder (also
+    when the netlist cannot be built: nothing to compile ahead). The kernels are named by their
+    source, which the topology's cached model holds; a topology not compiled yet may share its
+    kernels with another (``direct.kernel_name``), and is found kept once its model is built."""
     import warnings
 
-    from circuitsim.compiler.cache import cache_key
+    from circuitsim.compiler.cache import cache_key, load_cached
     from circuitsim.errors import CircuitsimError
     from circuitsim.netlist.load import build
+    from circuitsim.solve.direct import kernel_name
 
     try:
         with warnings.catch_warnings():
@@ -243,7 +236,12 @@ def _kept(raw, folder: Path) -> bool:
             key = cache_key(build(raw).topology_key())
     except (CircuitsimError, KeyError, ValueError):
         return True
-    return any((folder / "__pycache__").glob(f"{key}_kernels.*.nbi"))
+    hit = load_cached(key)
+    if hit is None:
+        return False
+    source = hit[1].get("kernels")
+    return not source or any(
+        (folder / "__pycache__").glob(f"{kernel_name(source)}_kernels.*.nbi"))
 
 
 def claim(raw) -> None:
@@ -253,18 +251,19 @@ def claim(raw) -> None:
         worker.claim(raw)
 
 
-def lend(model_key: str, source: str, names: list[str]) -> str | None:
-    """Have the worker compile the cfuncs ``names`` of a model's kernel module (its key and
-    ``source``) now, before anything queued, while the caller compiles others; the job's key
-    for ``claim_job``, or None without a worker (the caller compiles them itself)."""
+def lend(source: str, names: list[str]) -> str | None:
+    """Have the worker compile the cfuncs ``names`` of the kernel module of ``source`` now,
+    before anything queued, while the caller compiles others; the job's key for
+    ``claim_job``, or None without a worker (the caller compiles them itself)."""
     from circuitsim.memo import open_cache_dir
+    from circuitsim.solve.direct import kernel_name
 
     worker = _WORKER[0] if _WORKER else None
     if worker is None or not worker.alive or not enabled() or \
             open_cache_dir()[0] != worker.folder:  # it compiles into another folder
         return None
-    key = f"kernels {model_key} {' '.join(names)}"
-    worker.lend(key, ("kernels", model_key, source, tuple(names)))
+    key = f"kernels {kernel_name(source)} {' '.join(names)}"
+    worker.lend(key, ("kernels", source, tuple(names)))
     return key
 
 
@@ -276,13 +275,12 @@ def claim_job(key: str) -> None:
         worker.claim_key(key, sent=True)
 
 
-def _compile_kernels(model_key: str, source: str, names: tuple[str, ...], folder: Path,
-                     started) -> None:
+def _compile_kernels(source: str, names: tuple[str, ...], folder: Path, started) -> None:
     """The worker's lent job: cfuncs of one kernel module, into numba's cache."""
     from circuitsim.solve import direct
 
     started()
-    module = direct.kernel_module(folder, model_key, source)
+    module = direct.kernel_module(folder, source)
     for name in names:
         direct.cfunc(module, name)
 

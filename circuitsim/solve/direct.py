@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import ctypes
 import functools
+import hashlib
 import importlib.util
 import sys
 from collections.abc import Callable
@@ -140,16 +141,25 @@ def kernels(model) -> Any | None:
     folder, why = open_cache_dir()
     if why is not None:
         return None
-    module = kernel_module(folder, model.key, source)
+    module = kernel_module(folder, source)
     _LOADED[model.key] = module
     return module
 
 
-def kernel_module(folder: Path, key: str, source: str) -> Any:
-    """The kernel module of the model ``key`` from its ``source``, written into the trusted
-    cache ``folder`` and imported from there."""
+def kernel_name(source: str) -> str:
+    """The name of a kernel module: a digest of its source. Topologies whose equations give
+    the same code share one module and one compile -- a cogging or an EMF harmonic of
+    another order (the order is a run-time parameter), one of two twin effects dropped."""
+    return "k" + hashlib.sha256(source.encode("utf-8")).hexdigest()[:24]
+
+
+def kernel_module(folder: Path, source: str) -> Any:
+    """The kernel module of ``source``, written into the trusted cache ``folder`` and
+    imported from there (once a process: models of the same code share it, and the cfuncs
+    it holds)."""
     _kernel_lib(folder)
-    return _import(f"circuitsim_kernels_{key}", _trusted_file(folder, f"{key}_kernels", source))
+    name = kernel_name(source)
+    return _import(f"circuitsim_kernels_{name}", _trusted_file(folder, f"{name}_kernels", source))
 
 
 def cfunc(module, name: str) -> Any:
@@ -175,10 +185,9 @@ def _kept(module, name: str) -> bool:
 _LENDER: list[tuple[Callable, Callable]] = []
 
 
-def lend_to(lend: Callable[[str, str, list[str]], str | None], claim: Callable[[str], None]
+def lend_to(lend: Callable[[str, list[str]], str | None], claim: Callable[[str], None]
             ) -> None:
-    """Hand a model's Jacobian kernels to ``lend`` (model key, kernel source, names -> a job
-    or None) while this process compiles the residual's; ``claim`` (the job) before using
+    """Hand a model's Jacobian kernels to ``lend`` (kernel source, names -> a job or None) while this process compiles the residual's; ``claim`` (the job) before using
     them."""
     _LENDER[:] = [(lend, claim)]
 
@@ -192,7 +201,7 @@ def _compile_shared(module, model, names: tuple[str, ...]) -> None:
     held = module.__dict__.get("_COMPILED", {})
     todo = [n for n in names if n not in held and not _kept(module, n)]
     lent = [n for n in todo[1:] if n.startswith("jacobian") and not _kept(module, "_jacobian_at")]
-    job = _LENDER[0][0](model.key, model.meta["kernels"], lent) if lent and _LENDER else None
+    job = _LENDER[0][0](model.meta["kernels"], lent) if lent and _LENDER else None
     if job is not None:  # what is not lent, here meanwhile; then the lent, from the cache
         for name in todo:
             if name not in lent:

@@ -70,6 +70,7 @@ from circuitsim.loop.diagnose.residual import (
 from circuitsim.loop.diagnose.result import Accepted, Diagnosis, DiagnosisError
 from circuitsim.loop.diagnose.scan import orders_by_gain, patched_raw
 from circuitsim.loop.diagnose.screen import (
+    Proposal,
     Screen,
     on_waveform,
     projections,
@@ -166,25 +167,43 @@ def fit_declared(netlist, record, free, probes, params, rtol, max_effects, progr
                              net.raw)
 
 
-def _expect_bent(state: ModelState) -> None:
-    """The circuits the law test bends at the end (``law``), as the model stands: a worker
-    may compile them while the search goes on, when nothing needed sooner is queued."""
-    if ahead.enabled():
-        raws = [bent_raw(state.raw, c.candidate.law) for c in state.chosen
-                if not c.correction and getattr(c.candidate, "law", None) is not None]
-        ahead.expect([r for r in raws if r is not None], replace=True, later=True)
+def _bent_raws(raw, chosen: Sequence[Choice]) -> list:
+    """The law test's bent circuits of the netlist ``raw`` with the effects ``chosen``, last
+    first: when the search ends, this process takes the first it tests off the line and
+    compiles it while the worker compiles the last; they meet between."""
+    raws = [bent_raw(raw, c.candidate.law) for c in chosen
+            if not c.correction and getattr(c.candidate, "law", None) is not None]
+    return [r for r in reversed(raws) if r is not None]
 
 
-def _expect_grid(raw, t) -> None:
+def _expect_grid(raw, t, before: Sequence[Any] = ()) -> None:
     """The order scan's circuit and the grid-screened candidates' topologies are the first
     the next round compiles alone: a worker may compile them ahead (``solve/ahead.py``)
-    while this process fits. ``t``: the record's times [s]."""
+    while this process fits, after the circuits ``before`` (needed sooner). ``t``: the
+    record's times [s]."""
     from circuitsim.netlist.load import build
 
     if ahead.enabled():
         scanned = patched_raw(raw, np.asarray(t, float))
-        ahead.expect([*([] if scanned is None else [scanned]),
+        ahead.expect([*before, *([] if scanned is None else [scanned]),
                       *(c.apply(raw) for c in candidates(build(raw)) if c.grid)], replace=True)
+
+
+def _expect_revise(setup: Setup, state: ModelState, log: dict[str, Any]) -> None:
+    """After an acceptance: the circuits the swaps and the backward step refit, then those
+    the next round compiles first (``_expect_grid``) -- or, when this acceptance reached the
+    limit of effects and no round follows, those the law test bends (``_bent_raws``). The
+    first refitted is left to this process, which needs it at once."""
+    if not ahead.enabled():
+        return
+    chosen = state.chosen
+    raws = [_base_raw(state, list(combo)) for combo in _swap_combos(state, log)]
+    raws += [_base_raw(state, [c for j, c in enumerate(chosen) if j != i])
+             for i in range(len(chosen) - 1)]
+    if sum(not c.correction for c in chosen) < setup.max_effects:
+        _expect_grid(state.raw, setup.record.t, raws[1:])
+    else:
+        ahead.expect(raws[1:] + _bent_raws(state.raw, state.chosen), replace=True)
 
 
 def _noise_weight(residual, measured) -> float:
@@ -220,9 +239,8 @@ def search(setup: Setup, state: ModelState, screen_top: int, clock: dict[str, fl
         if winner is None:
             break
         state = _accept(setup, state, winner, log)
-        _expect_grid(state.raw, setup.record.t)
+        _expect_revise(setup, state, log)
         state = _backward(setup, _swap(setup, state, log), log)
-        _expect_bent(state)
         # with another effect in place, what was rejected may now be needed (an offset that
         # only shows once the friction is there): every candidate is open again
         log["tried"] = set()
@@ -362,15 +380,16 @@ def _refit_round(setup: Setup, state: ModelState, screens: list[Screen],
     passes alone, the best two together. Each trial comes with the keys of its candidates
     that re-tune a declared term (corrections)."""
     trials: list[tuple[Trial, frozenset[str]]] = []
-    raws = [s.proposal.candidate.apply(state.raw) for s in screens if s.model is None]
+    # the first is compiled here at once (the worker, started on it, would be waited for
+    # while this process idles): the worker takes the next meanwhile
+    raws = [s.proposal.candidate.apply(state.raw) for s in screens[1:] if s.model is None]
     if screens and ahead.enabled():
-        # the next round's order scan when the best screened wins, as it mostly does: the
-        # round's first compile after an acceptance, needed before anything else is queued
-        raws.append(patched_raw(screens[0].proposal.candidate.apply(state.raw),
-                                np.asarray(setup.record.t, float)))
+        raws += _after_win(setup, state, screens[0].proposal)
     if len(screens) >= 2:
         raws.append(screens[1].proposal.candidate.apply(screens[0].proposal.candidate.apply(
             state.raw)))
+    # when no candidate wins the search ends, and the law test bends the model as it stands
+    raws += _bent_raws(state.raw, state.chosen)
     # compiled ahead in the order of the refits
     ahead.expect([r for r in raws if r is not None], replace=True)
     for s in screens:
@@ -412,6 +431,16 @@ def _refit_round(setup: Setup, state: ModelState, screens: list[Screen],
                 f"{best[0].delta_bic:.1f} vs {t.delta_bic:.1f}): the data cannot tell them "
                 f"apart")
     return best
+
+
+def _after_win(setup: Setup, state: ModelState, best: Proposal) -> list:
+    """What is compiled first after ``best`` is accepted, as it mostly is: the next round's
+    order scan -- or, when it reaches the limit of effects and no round follows, the circuits
+    the law test bends at the end (``_bent_raws``)."""
+    won = best.candidate.apply(state.raw)
+    if best.correction or sum(not c.correction for c in state.chosen) + 1 < setup.max_effects:
+        return [patched_raw(won, np.asarray(setup.record.t, float))]
+    return _bent_raws(won, [*state.chosen, Choice(best.candidate, False)])
 
 
 def _corrections(screens: list[Screen]) -> frozenset[str]:
@@ -461,12 +490,8 @@ def _swap(setup: Setup, state: ModelState, log: dict[str, Any]) -> ModelState:
     fits around the stand-in. With every effect in place, each combination of the rounds'
     choices and their near-equal alternatives is refitted (at most ``MAX_COMBINATIONS``), and
     the best replaces the model when it lowers the BIC by more than the margin."""
-    options = [[choice, *(Choice(t.candidates[0], choice.correction)
-                          for t in log.get("rounds", {}).get(choice.candidate.key, []))]
-               for choice in state.chosen]
-    combos = _distinct_combos(options)
-    # with one effect, its round already compared the alternatives in the same company
-    if len(state.chosen) < 2 or not combos or len(combos) >= MAX_COMBINATIONS:
+    combos = _swap_combos(state, log)
+    if not combos:
         return state
     best, best_gain = state, -BIC_MARGIN
     own = whiteners_of(state.fit.residuals, setup.probes)
@@ -513,6 +538,16 @@ def _swap(setup: Setup, state: ModelState, log: dict[str, Any]) -> ModelState:
                 if a.candidates[0].key == c.candidate.key)
     best.model = compile_raw(best.raw)
     return best
+
+
+def _swap_combos(state: ModelState, log: dict[str, Any]) -> list[tuple[Choice, ...]]:
+    """The combinations ``_swap`` refits: none with one effect (its round already compared
+    the alternatives in the same company) or with too many."""
+    options = [[choice, *(Choice(t.candidates[0], choice.correction)
+                          for t in log.get("rounds", {}).get(choice.candidate.key, []))]
+               for choice in state.chosen]
+    combos = _distinct_combos(options)
+    return [] if len(state.chosen) < 2 or len(combos) >= MAX_COMBINATIONS else combos
 
 
 def _distinct_combos(options: list[list[Choice]]) -> list[tuple[Choice, ...]]:

@@ -128,10 +128,10 @@ def screen(setup: Setup, state: ModelState, proposal: Proposal, project: Project
     """Score test of one candidate (see the module docstring); None when it cannot run or
     acts on nothing measured (its sensitivity stays within the solver's own noise)."""
     cand = proposal.candidate
-    model = compile_raw(cand.apply(state.raw))
     base = {**state.params, **{k: v[0] for k, v in cand.free.items()}}
-    if cand.effect in SENSOR_LAWS:
-        return _sensor(setup, state, proposal, model, base, project)
+    if cand.effect in SENSOR_LAWS:  # no run: its model is compiled if it is refitted
+        return _sensor(setup, state, proposal, base, project)
+    model = compile_raw(cand.apply(state.raw))
     if cand.grid:
         y0 = simulate(setup, model, base)
         if y0 is None:
@@ -379,7 +379,7 @@ SENSOR_LAWS = {"sensor-gain": lambda x, t: x, "sensor-offset": lambda x, t: np.o
                "sensor-delay": lambda x, t: -np.gradient(x, t)}
 
 
-def _sensor(setup: Setup, state: ModelState, proposal: Proposal, model, base,
+def _sensor(setup: Setup, state: ModelState, proposal: Proposal, base,
             project: Projector) -> Screen | None:
     """Sensor effects act on one probe only, through a known law: their sensitivity needs
     no simulation."""
@@ -400,4 +400,4 @@ def _sensor(setup: Setup, state: ModelState, proposal: Proposal, model, base,
     coef = float(col @ e0) / den
     (name,) = cand.free
     start = {name: _inside(cand.free[name], base[name] + coef)}
-    return Screen(proposal, coef * coef * den / norm0, start, model, e0.size)
+    return Screen(proposal, coef * coef * den / norm0, start, None, e0.size)
