@@ -31,13 +31,10 @@ analysis: {{stop: 4 ms, step: 10 us}}
 @pytest.fixture
 def fresh(tmp_path, monkeypatch, write_netlist):
     """A cache folder of its own, kernels on, and a raw netlist maker: one topology a tag
-    (the resistor's name). Its kernels are one module whatever the tag (they are named by
-    their source), so the modules this process loaded before are forgotten: no test meets
-    kernels loaded for another."""
-    import sys
-
-    for name in [n for n in sys.modules if n.startswith("circuitsim_kernels_")]:
-        monkeypatch.delitem(sys.modules, name)
+    (the resistor's name), the same code whatever the tag (kernels are named by their
+    source). The kernels this process loaded before are forgotten, and a module of the same
+    name loaded from another test's folder is imported again from this one's
+    (``direct._import``): no test meets kernels loaded for another."""
     monkeypatch.setattr(direct, "_LOADED", {})
     monkeypatch.setenv("CIRCUITSIM_CACHE", str(tmp_path / "cache"))
     monkeypatch.setenv("CIRCUITSIM_KERNELS", "numba")
@@ -88,6 +85,20 @@ def direct_cache():
     from circuitsim.memo import cache_dir
 
     return cache_dir()
+
+
+def test_a_topology_of_kept_code_shares_the_kept_kernels(fresh):
+    """Kernels are named by their source: a topology of the same code as one the worker
+    compiled (another resistor's name) reads as not kept while its model is not cached (its
+    model names the source), then as kept, and its kernels load from numba's cache."""
+    first, twin = fresh("t1"), fresh("t2")
+    ahead.expect([first])
+    assert _wait_done(first) and ahead._kept(first, direct_cache())
+    assert not ahead._kept(twin, direct_cache())
+    model = _compiled(twin)  # its model only: no kernel is compiled for it
+    assert ahead._kept(twin, direct_cache())
+    module = direct.kernels(model)
+    assert all(direct.cfunc(module, name).cache_hits for name in module.CFUNCS)
 
 
 def test_a_claim_takes_a_queued_topology_back(fresh):

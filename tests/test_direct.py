@@ -445,11 +445,13 @@ def test_topologies_of_the_same_code_share_one_kernel_module(compile_text, monke
         analysis: {stop: 0.2, step: 0.1 ms, rtol: 1e-11, atol: 1e-13}
     """
     four, six = (compile_text(text % (n, n)) for n in (4, 6))
-    assert four.key != six.key
+    assert four.key != six.key and four.meta["kernels"]
+    assert direct.kernels(four) is not None
     assert direct.kernels(four) is direct.kernels(six)
     for model, n in ((four, 4), (six, 6)):
         python, kernels = _both(model, monkeypatch)
         _same(python, kernels)
+        assert direct._LOADED.get(model.key) is not None  # the direct route did run
         w, phi = kernels["w"], kernels["phi"]
         energy = 0.5 * 1e-5 * w ** 2 + 0.01 / n * np.cos(n * phi)
         assert np.ptp(energy) < 1e-8 * energy[0]

@@ -205,8 +205,9 @@ def _cores() -> int:
 
 def expect(raws: Iterable[Any], replace: bool = False) -> None:
     """Queue raw netlists whose topologies will be needed soon, in order of need (after the
-    queued ones; ``replace``: instead of them). Those whose kernels numba keeps already are
-    left out, and no worker is started for none (a warm cache: it would only compete)."""
+    queued ones; ``replace``: instead of them). Those whose model is cached and whose kernels
+    numba keeps are left out, and no worker is started for none (a warm cache: it would only
+    compete)."""
     if not enabled():
         return
     from circuitsim.memo import cache_dir

@@ -87,6 +87,10 @@ def _libraries() -> dict[str, Any]:
 
 
 _LOADED: dict[str, Any] = {}
+#: numba's options for every cfunc. They are part of a kernel module's name (``kernel_name``):
+#: numba's cache key does not hold them, and machine code compiled with other options must
+#: not be loaded for these.
+CFUNC_OPTIONS: dict[str, Any] = {"cache": True, "error_model": "numpy"}
 
 
 def _trusted_file(folder: Path, name: str, source: str) -> Path:
@@ -101,9 +105,11 @@ def _trusted_file(folder: Path, name: str, source: str) -> Path:
 
 def _import(name: str, path: Path) -> Any:
     """The module at ``path`` under ``name``, registered before it runs: numba's kept code
-    names the module's helpers by module name."""
-    if name in sys.modules:
-        return sys.modules[name]
+    names the module's helpers by module name. One loaded from another cache folder (the
+    process changed ``CIRCUITSIM_CACHE``) is replaced: its machine code is kept there."""
+    held = sys.modules.get(name)
+    if held is not None and Path(getattr(held, "__file__", "") or "") == path:
+        return held
     spec = importlib.util.spec_from_file_location(name, path)
     module = importlib.util.module_from_spec(spec)
     sys.modules[name] = module
@@ -147,10 +153,12 @@ def kernels(model) -> Any | None:
 
 
 def kernel_name(source: str) -> str:
-    """The name of a kernel module: a digest of its source. Topologies whose equations give
-    the same code share one module and one compile -- a cogging or an EMF harmonic of
-    another order (the order is a run-time parameter), one of two twin effects dropped."""
-    return "k" + hashlib.sha256(source.encode("utf-8")).hexdigest()[:24]
+    """The name of a kernel module: a digest of its source and of numba's options. Topologies
+    whose equations give the same code share one module and one compile -- a cogging or an
+    EMF harmonic of another order (the order is a run-time parameter), one of two twin
+    effects dropped."""
+    text = f"{sorted(CFUNC_OPTIONS.items())!r}\n{source}"
+    return "k" + hashlib.sha256(text.encode("utf-8")).hexdigest()[:24]
 
 
 def kernel_module(folder: Path, source: str) -> Any:
@@ -170,7 +178,7 @@ def cfunc(module, name: str) -> Any:
         import numba
 
         sig = getattr(module, module.CFUNCS[name])
-        held[name] = numba.cfunc(sig, cache=True, error_model="numpy")(getattr(module, name))
+        held[name] = numba.cfunc(sig, **CFUNC_OPTIONS)(getattr(module, name))
     return held[name]
 
 
@@ -187,8 +195,8 @@ _LENDER: list[tuple[Callable, Callable]] = []
 
 def lend_to(lend: Callable[[str, list[str]], str | None], claim: Callable[[str], None]
             ) -> None:
-    """Hand a model's Jacobian kernels to ``lend`` (kernel source, names -> a job or None) while this process compiles the residual's; ``claim`` (the job) before using
-    them."""
+    """Hand a model's Jacobian kernels to ``lend`` (kernel source, names -> a job or None)
+    while this process compiles the residual's; ``claim`` (the job) before using them."""
     _LENDER[:] = [(lend, claim)]
 
 

@@ -380,18 +380,7 @@ def _refit_round(setup: Setup, state: ModelState, screens: list[Screen],
     passes alone, the best two together. Each trial comes with the keys of its candidates
     that re-tune a declared term (corrections)."""
     trials: list[tuple[Trial, frozenset[str]]] = []
-    # the first is compiled here at once (the worker, started on it, would be waited for
-    # while this process idles): the worker takes the next meanwhile
-    raws = [s.proposal.candidate.apply(state.raw) for s in screens[1:] if s.model is None]
-    if screens and ahead.enabled():
-        raws += _after_win(setup, state, screens[0].proposal)
-    if len(screens) >= 2:
-        raws.append(screens[1].proposal.candidate.apply(screens[0].proposal.candidate.apply(
-            state.raw)))
-    # when no candidate wins the search ends, and the law test bends the model as it stands
-    raws += _bent_raws(state.raw, state.chosen)
-    # compiled ahead in the order of the refits
-    ahead.expect([r for r in raws if r is not None], replace=True)
+    _expect_refits(setup, state, screens)
     for s in screens:
         c = s.proposal.candidate
         setup.log(f"refitting {c.key}")
@@ -433,11 +422,29 @@ def _refit_round(setup: Setup, state: ModelState, screens: list[Screen],
     return best
 
 
-def _after_win(setup: Setup, state: ModelState, best: Proposal) -> list:
-    """What is compiled first after ``best`` is accepted, as it mostly is: the next round's
-    order scan -- or, when it reaches the limit of effects and no round follows, the circuits
-    the law test bends at the end (``_bent_raws``)."""
-    won = best.candidate.apply(state.raw)
+def _expect_refits(setup: Setup, state: ModelState, screens: list[Screen]) -> None:
+    """For the worker, in the order of need: the refits' circuits but the first (compiled
+    here at once; the worker, started on it, would be waited for while this process idles),
+    what follows a win of the best (``_after_win``), the pair of the best two, and the law
+    test's bent circuits of the model as it stands (needed when no candidate wins and the
+    search ends)."""
+    if not ahead.enabled():
+        return
+    raws = []
+    if screens:
+        best = screens[0].proposal.candidate.apply(state.raw)
+        raws += [s.proposal.candidate.apply(state.raw) for s in screens[1:] if s.model is None]
+        raws += _after_win(setup, state, screens[0].proposal, best)
+        if len(screens) >= 2:
+            raws.append(screens[1].proposal.candidate.apply(best))
+    raws += _bent_raws(state.raw, state.chosen)
+    ahead.expect([r for r in raws if r is not None], replace=True)
+
+
+def _after_win(setup: Setup, state: ModelState, best: Proposal, won) -> list:
+    """What is compiled first after ``best`` is accepted (``won``: the netlist with it), as
+    it mostly is: the next round's order scan -- or, when it reaches the limit of effects and
+    no round follows, the circuits the law test bends at the end (``_bent_raws``)."""
     if best.correction or sum(not c.correction for c in state.chosen) + 1 < setup.max_effects:
         return [patched_raw(won, np.asarray(setup.record.t, float))]
     return _bent_raws(won, [*state.chosen, Choice(best.candidate, False)])

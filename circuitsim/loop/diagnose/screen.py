@@ -52,7 +52,7 @@ class Screen:
     proposal: Proposal
     share: float
     start: Mapping[str, float]
-    model: Any
+    model: Any  # the candidate's compiled model; None when not compiled yet (a sensor's)
     dim: int = 0  # length of the projected residual the share is of
 
 
