@@ -649,3 +649,38 @@ def test_orders_are_proposed_from_a_shaft_that_reverses():
                          noise + 0.02 * np.sin(3 * phi + 0.5), [])
     assert [p["orders"] for p in peaks] == [{"rotor": 3}]
     assert _order_peaks(sim, {"rotor": float(np.mean(w))}, t, noise, []) == []
+
+
+def test_the_worker_is_asked_for_what_the_search_needs_next(monkeypatch):
+    """The compile-ahead queue (``solve/ahead.py``), with a recorder in place of the worker:
+    a refit round queues its refits but the first (compiled here at once), and, when the
+    best would reach the limit of effects, the law test's bent circuits -- the very ones the
+    law test then compiles."""
+    from circuitsim.solve import ahead
+
+    asked: list[tuple[str, list[str]]] = []
+    claimed: list[tuple[str, str]] = []
+
+    def expect(raws, replace=False):
+        import sys
+
+        asked.append((sys._getframe(1).f_code.co_name, [ahead._key(r) for r in raws]))
+
+    def claim(raw):
+        import sys
+
+        claimed.append((sys._getframe(2).f_code.co_name, ahead._key(raw)))
+
+    monkeypatch.setattr(ahead, "enabled", lambda: True)
+    monkeypatch.setattr(ahead, "expect", expect)
+    monkeypatch.setattr(ahead, "claim", claim)
+    rec = make_record([("viscous-friction", "rotor", None, [5e-6])], seed=3)
+    d = diagnose(cs.load(MOTOR), rec, max_effects=1)
+    assert [a.effect for a in d.effects] == ["viscous-friction"], d.summary()
+    # the first round's refits, in the order they were compiled
+    first = next(keys for who, keys in asked if who == "_expect_refits")
+    refits = [k for who, k in claimed if who == "_refit_round"]
+    assert refits[0] not in first and set(refits[1:]) <= set(first)
+    # the law test compiles its bent circuit of the final model: queued in the refit round
+    bent = [k for who, k in claimed if who == "bend_of"]
+    assert bent and set(bent) <= set(first)
