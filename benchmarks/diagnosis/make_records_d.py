@@ -230,25 +230,8 @@ ALTERNATIVES: tuple[tuple[str, Fx, dict[str, float]], ...] = (
     ("resistance-drift:warmup-1", {"warmup": (1e-3, 1.0)}, {}),
 )
 
-_NULL: dict[str, dict[str, np.ndarray]] = {}
-
-
-def null(regime: str) -> dict[str, np.ndarray]:
-    """The declared model's noise-free probes (cached)."""
-    if regime not in _NULL:
-        _NULL[regime] = sd.simulate(regime)
-    return _NULL[regime]
-
-
-def imprint(regime: str, clean: dict[str, np.ndarray]) -> np.ndarray:
-    """The probes' difference from the null in default white-noise sigmas, concatenated."""
-    return np.concatenate([(clean[p] - null(regime)[p]) / s for p, s in WHITE[regime].items()])
-
-
-def signature(regime: str, clean: dict[str, np.ndarray]) -> dict[str, float]:
-    """||effect - null|| / white sigma per probe: the imprint in noise sigmas [1]."""
-    return {p: float(np.linalg.norm(clean[p] - null(regime)[p]) / s)
-            for p, s in WHITE[regime].items()}
+IMPRINTS = recordkit.Imprints(sd.simulate, WHITE)
+null, signature, imprint = IMPRINTS.null, IMPRINTS.signature, IMPRINTS.imprint
 
 
 def _alternative_imprints(regime: str) -> dict[str, np.ndarray]:

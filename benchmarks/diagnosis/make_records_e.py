@@ -287,26 +287,9 @@ ALTERNATIVES: tuple[tuple[str, Fx, dict[str, float]], ...] = (
 #: warm-ups Ra (1 + rise (1 - exp(-t/tau))) with tau these fractions of the record
 WARMUP_FRACTIONS = (0.1, 0.3, 1.0)
 
-_NULL: dict[str, dict[str, np.ndarray]] = {}
+IMPRINTS = recordkit.Imprints(se.simulate, WHITE)
+null, signature, imprint = IMPRINTS.null, IMPRINTS.signature, IMPRINTS.imprint
 _ALTS: dict[str, dict[str, np.ndarray]] = {}
-
-
-def null(regime: str) -> dict[str, np.ndarray]:
-    """The declared model's noise-free probes (cached)."""
-    if regime not in _NULL:
-        _NULL[regime] = se.simulate(regime)
-    return _NULL[regime]
-
-
-def imprint(regime: str, clean: dict[str, np.ndarray]) -> np.ndarray:
-    """The probes' difference from the null in default white-noise sigmas, concatenated."""
-    return np.concatenate([(clean[p] - null(regime)[p]) / s for p, s in WHITE[regime].items()])
-
-
-def signature(regime: str, clean: dict[str, np.ndarray]) -> dict[str, float]:
-    """||effect - null|| / white sigma per probe: the imprint in noise sigmas [1]."""
-    return {p: float(np.linalg.norm(clean[p] - null(regime)[p]) / s)
-            for p, s in WHITE[regime].items()}
 
 
 def alternative_imprints(regime: str) -> dict[str, np.ndarray]:

@@ -223,24 +223,8 @@ def record_specs() -> list[dict[str, Any]]:
 
 # ---------------------------------------------------------------------- sizes
 
-_NULL: dict[str, dict] = {}
-_ALTS: dict[str, dict] = {}
-
-
-def null(regime):
-    if regime not in _NULL:
-        _NULL[regime] = sf.simulate(regime)
-    return _NULL[regime]
-
-
-def signature(regime, clean):
-    """||effect - null|| / white sigma per probe [1]."""
-    return {p: float(np.linalg.norm(clean[p] - null(regime)[p]) / s)
-            for p, s in WHITE[regime].items()}
-
-
-def imprint(regime, clean):
-    return np.concatenate([(clean[p] - null(regime)[p]) / s for p, s in WHITE[regime].items()])
+IMPRINTS = recordkit.Imprints(sf.simulate, WHITE)
+null, signature, imprint = IMPRINTS.null, IMPRINTS.signature, IMPRINTS.imprint
 
 
 #: small catalog effects (label, fx) whose imprints an outside record's is compared with
@@ -262,20 +246,10 @@ ALTERNATIVES = (
 )
 
 
-def alternatives(regime):
-    if regime not in _ALTS:
-        dur = sf.REGIMES[regime][1]
-        out = {}
-        for label, fx in ALTERNATIVES:
-            if "warmup" in fx:
-                fx = {"warmup": (fx["warmup"][0], fx["warmup"][1] * dur)}
-            out[label] = imprint(regime, sim(regime, fx))
-        for probe in sf.PROBES[regime]:
-            for kind, v in (("gain", 1.001), ("offset", 1e-3)):
-                out[f"sensor-{kind}:{probe}"] = imprint(
-                    regime, sim(regime, {"sensor": {probe: {kind: v}}}))
-        _ALTS[regime] = out
-    return _ALTS[regime]
+def alternatives(regime: str) -> dict[str, np.ndarray]:
+    return IMPRINTS.of_effects(regime, lambda fx: sim(regime, fx), ALTERNATIVES,
+                               sf.PROBES[regime], sf.REGIMES[regime][1],
+                               sensors=recordkit.SENSOR_STEPS[:2])  # no delay in this set
 
 
 def unexplained(regime, clean):

@@ -297,24 +297,8 @@ def record_specs() -> list[dict[str, Any]]:
 
 # ---------------------------------------------------------------------- signatures
 
-_NULL: dict[str, dict] = {}
-_ALTS: dict[str, dict] = {}
-
-
-def null(regime: str) -> dict:
-    if regime not in _NULL:
-        _NULL[regime] = sh.simulate(regime)
-    return _NULL[regime]
-
-
-def signature(regime: str, clean: dict) -> dict[str, float]:
-    """||effect - null|| / white sigma, per probe."""
-    return {p: float(np.linalg.norm(clean[p] - null(regime)[p]) / s)
-            for p, s in WHITE[regime].items()}
-
-
-def imprint(regime: str, clean: dict) -> np.ndarray:
-    return np.concatenate([(clean[p] - null(regime)[p]) / s for p, s in WHITE[regime].items()])
+IMPRINTS = recordkit.Imprints(sh.simulate, WHITE)
+null, signature, imprint = IMPRINTS.null, IMPRINTS.signature, IMPRINTS.imprint
 
 
 #: small catalog effects (label, fx) an imprint is compared with (linearised at the null)
@@ -344,19 +328,8 @@ SCALAR_EFFECTS = (
 
 
 def alternatives(regime: str) -> dict[str, np.ndarray]:
-    if regime not in _ALTS:
-        dur = sh.REGIMES[regime][1]
-        alts = {}
-        for label, fx in SCALAR_EFFECTS:
-            if "warmup" in fx:  # the time constant as a fraction of the record
-                fx = {"warmup": (fx["warmup"][0], fx["warmup"][1] * dur)}
-            alts[label] = imprint(regime, sim(regime, fx))
-        for probe in sh.PROBES[regime]:
-            for kind, v in (("gain", 1.001), ("offset", 1e-3), ("delay", 1e-5)):
-                alts[f"sensor-{kind}:{probe}"] = imprint(
-                    regime, sim(regime, {"sensor": {probe: {kind: v}}}))
-        _ALTS[regime] = alts
-    return _ALTS[regime]
+    return IMPRINTS.of_effects(regime, lambda fx: sim(regime, fx), SCALAR_EFFECTS,
+                               sh.PROBES[regime], sh.REGIMES[regime][1])
 
 
 #: alternatives whose catalog parameter cannot go negative (a resistance, a brush drop, a

@@ -280,24 +280,8 @@ def record_specs() -> list[dict[str, Any]]:
 
 # ---------------------------------------------------------------------- signatures
 
-_NULL: dict[str, dict] = {}
-_ALTS: dict[str, dict] = {}
-
-
-def null(regime: str) -> dict:
-    if regime not in _NULL:
-        _NULL[regime] = sj.simulate(regime)
-    return _NULL[regime]
-
-
-def signature(regime: str, clean: dict) -> dict[str, float]:
-    """||effect - null|| / white sigma, per probe."""
-    return {p: float(np.linalg.norm(clean[p] - null(regime)[p]) / s)
-            for p, s in WHITE[regime].items()}
-
-
-def imprint(regime: str, clean: dict) -> np.ndarray:
-    return np.concatenate([(clean[p] - null(regime)[p]) / s for p, s in WHITE[regime].items()])
+IMPRINTS = recordkit.Imprints(sj.simulate, WHITE)
+null, signature, imprint = IMPRINTS.null, IMPRINTS.signature, IMPRINTS.imprint
 
 
 #: small catalog effects (label, fx) an imprint is compared with, linearised at the null
@@ -336,33 +320,15 @@ HARMONIC_EFFECTS = (
 
 def alternatives(regime: str) -> dict[str, np.ndarray]:
     """Label -> (n, 1) imprint of each scalar catalog effect, per unit size, linearised."""
-    if regime not in _ALTS:
-        dur = sj.REGIMES[regime][1]
-        alts = {}
-        for label, fx in SCALAR_EFFECTS:
-            if "warmup" in fx:  # the time constant as a fraction of the record
-                fx = {"warmup": (fx["warmup"][0], fx["warmup"][1] * dur)}
-            alts[label] = imprint(regime, sim(regime, fx))[:, None]
-        for probe in sj.PROBES[regime]:
-            for kind, v in (("gain", 1.001), ("offset", 1e-3), ("delay", 1e-5)):
-                alts[f"sensor-{kind}:{probe}"] = imprint(
-                    regime, sim(regime, {"sensor": {probe: {kind: v}}}))[:, None]
-        _ALTS[regime] = alts
-    return _ALTS[regime]
-
-
-_HARM: dict[str, dict] = {}
+    return IMPRINTS.of_effects(regime, lambda fx: sim(regime, fx), SCALAR_EFFECTS,
+                               sj.PROBES[regime], sj.REGIMES[regime][1], columns=True)
 
 
 def harmonic_alternatives(regime: str) -> dict[str, np.ndarray]:
-    if regime not in _HARM:
-        out = {}
-        for label, build in HARMONIC_EFFECTS:
-            size = 1e-4 if "emf" in label else (1e-2 if "arm" in label else 1e-4)
-            out[label] = np.column_stack([imprint(regime, sim(regime, build(size, 0.0))),
-                                          imprint(regime, sim(regime, build(0.0, size)))])
-        _HARM[regime] = out
-    return _HARM[regime]
+    return IMPRINTS.of_harmonics(
+        regime, lambda fx: sim(regime, fx), HARMONIC_EFFECTS,
+        # "emf-harmonic" holds "arm": the EMF's test comes first
+        lambda label: 1e-4 if "emf" in label else (1e-2 if "arm" in label else 1e-4))
 
 
 def unexplained(regime: str, clean: dict) -> dict:

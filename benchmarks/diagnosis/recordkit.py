@@ -1,7 +1,8 @@
 """What the record generators of the later sets share (``make_records_d.py`` ...
-``make_records_k.py``): the noise's text, the writers of a record's CSV and of truth.json, and
-the command line. Each set's simulator and its records stay in its own modules, written
-independently; nothing here simulates or imports circuitsim.
+``make_records_k.py``): the noise's text, an effect's imprint on a set's null run
+(``Imprints``), the writers of a record's CSV and of truth.json, and the command line. Each
+set's simulator and its records stay in its own modules, written independently; nothing here
+imports circuitsim, and nothing is simulated here but by a set's own simulator.
 
 truth.json is merged under an exclusive lock (``.truth.lock``: several generators may merge
 their own ids at once): every other entry is kept, an entry with the same id is replaced in
@@ -53,6 +54,71 @@ def noise_or_white(spec: Mapping[str, Any], white: Mapping[str, Mapping[str, flo
     if spec["noise"] is not None:
         return spec["noise"]
     return {p: {"white": s} for p, s in white[spec["regime"]].items()}
+
+
+#: each probe's sensor effects an imprint is compared with: (kind, size) [1, probe unit, s]
+SENSOR_STEPS = (("gain", 1.001), ("offset", 1e-3), ("delay", 1e-5))
+
+
+class Imprints:
+    """One set's null runs and what an effect changes in them, per regime: in each probe, in
+    units of that probe's white noise sigma (the effect's *imprint*). ``simulate(regime)``
+    gives the declared model's clean probes; ``white`` per regime, per probe, the sigma
+    [probe unit]. The set's own simulator makes every run; nothing here changes a number."""
+
+    def __init__(self, simulate: Callable[[str], Mapping[str, np.ndarray]],
+                 white: Mapping[str, Mapping[str, float]]):
+        self._simulate, self.white = simulate, white
+        self._held: dict[tuple[str, str], Any] = {}
+
+    def null(self, regime: str) -> Mapping[str, np.ndarray]:
+        """The declared model's clean probes (one run a regime)."""
+        if ("null", regime) not in self._held:
+            self._held["null", regime] = self._simulate(regime)
+        return self._held["null", regime]
+
+    def signature(self, regime: str, clean: Mapping[str, np.ndarray]) -> dict[str, float]:
+        """||effect - null|| / white sigma, per probe [1]."""
+        return {p: float(np.linalg.norm(clean[p] - self.null(regime)[p]) / s)
+                for p, s in self.white[regime].items()}
+
+    def imprint(self, regime: str, clean: Mapping[str, np.ndarray]) -> np.ndarray:
+        """The probes' difference from the null in white-noise sigmas, concatenated [1]."""
+        return np.concatenate([(clean[p] - self.null(regime)[p]) / s
+                               for p, s in self.white[regime].items()])
+
+    def of_effects(self, regime: str, run: Callable[[dict], Mapping[str, np.ndarray]],
+                   effects: Iterable[tuple[str, dict]], probes: Iterable[str],
+                   duration: float, sensors: Iterable[tuple[str, float]] = SENSOR_STEPS,
+                   columns: bool = False) -> dict[str, np.ndarray]:
+        """Label -> imprint of each small catalog effect ``(label, fx)`` run by ``run(fx)``
+        (a warm-up's time constant given as a fraction of the record's ``duration`` [s]), then
+        of each probe's sensor effects; as (n, 1) columns with ``columns``. Once a regime."""
+        if ("effects", regime) not in self._held:
+            out = {}
+            for label, fx in effects:
+                if "warmup" in fx:
+                    fx = {**fx, "warmup": (fx["warmup"][0], fx["warmup"][1] * duration)}
+                out[label] = self.imprint(regime, run(fx))
+            for probe in probes:
+                for kind, v in sensors:
+                    out[f"sensor-{kind}:{probe}"] = self.imprint(
+                        regime, run({"sensor": {probe: {kind: v}}}))
+            self._held["effects", regime] = {k: v[:, None] for k, v in out.items()} \
+                if columns else out
+        return self._held["effects", regime]
+
+    def of_harmonics(self, regime: str, run: Callable[[dict], Mapping[str, np.ndarray]],
+                     effects: Iterable[tuple[str, Callable[[float, float], dict]]],
+                     size: Callable[[str], float]) -> dict[str, np.ndarray]:
+        """Label -> (n, 2) imprints of each angle-locked effect ``(label, build)``: its sine
+        and its cosine of ``size(label)`` each (``build(a, b)`` gives the fx). Once a regime."""
+        if ("harmonics", regime) not in self._held:
+            self._held["harmonics", regime] = {
+                label: np.column_stack([self.imprint(regime, run(build(size(label), 0.0))),
+                                        self.imprint(regime, run(build(0.0, size(label))))])
+                for label, build in effects}
+        return self._held["harmonics", regime]
 
 
 def left(y: np.ndarray, x: np.ndarray) -> float:
