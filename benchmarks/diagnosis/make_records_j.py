@@ -336,26 +336,13 @@ def unexplained(regime: str, clean: dict) -> dict:
     after the best single one, and after all of them at once (least squares). The
     angle-locked ones (an unbalance, cogging of order 2, EMF harmonics of orders 1 and 2)
     count as one effect of two columns."""
-    y = imprint(regime, clean)
-    alts = {**alternatives(regime), **harmonic_alternatives(regime)}
-    left = {k: recordkit.left(y, a) for k, a in alts.items()}
-    best = min(left, key=left.__getitem__)
-    x = np.column_stack(list(alts.values()))
-    return {"imprint": float(np.linalg.norm(y)), "best_single": [best, left[best]],
-            "all_scalar_effects_jointly": recordkit.left(y, x),
-            "note": "linearised; alternatives: " + ", ".join(alts)}
+    return IMPRINTS.unexplained(regime, clean,
+                                {**alternatives(regime), **harmonic_alternatives(regime)})
 
 
 def separation(regime: str, clean: dict, same: set) -> dict[str, float]:
     """Distance [white sigma] of the imprint from each other scalar effect's best-scaled one."""
-    y = imprint(regime, clean)
-    out: dict[str, float] = {}
-    for label, a in alternatives(regime).items():
-        kind = label.split(":")[0]
-        if kind in same:
-            continue
-        out[kind] = min(out.get(kind, math.inf), recordkit.left(y, a))
-    return out
+    return IMPRINTS.separation(regime, clean, alternatives(regime), same)
 
 
 def scale_marginal(s: dict) -> None:

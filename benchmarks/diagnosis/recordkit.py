@@ -15,6 +15,7 @@ from __future__ import annotations
 import argparse
 import fcntl
 import json
+import math
 import os
 import tempfile
 import time
@@ -119,6 +120,30 @@ class Imprints:
                                         self.imprint(regime, run(build(0.0, size(label))))])
                 for label, build in effects}
         return self._held["harmonics", regime]
+
+    def unexplained(self, regime: str, clean: Mapping[str, np.ndarray],
+                    alts: Mapping[str, np.ndarray]) -> dict[str, Any]:
+        """What the effects ``alts`` (label -> their imprints' columns) leave of the
+        imprint of ``clean`` [white sigma], linearised at the null: after the best single
+        one, and after all of them at once (least squares)."""
+        y = self.imprint(regime, clean)
+        rest = {k: left(y, a) for k, a in alts.items()}
+        best = min(rest, key=rest.__getitem__)
+        return {"imprint": float(np.linalg.norm(y)), "best_single": [best, rest[best]],
+                "all_scalar_effects_jointly": left(y, np.column_stack(list(alts.values()))),
+                "note": "linearised; alternatives: " + ", ".join(alts)}
+
+    def separation(self, regime: str, clean: Mapping[str, np.ndarray],
+                   alts: Mapping[str, np.ndarray], same: set[str]) -> dict[str, float]:
+        """Distance [white sigma] of the imprint of ``clean`` from each kind of effect in
+        ``alts`` but those ``same`` (the record's own), best-scaled."""
+        y = self.imprint(regime, clean)
+        out: dict[str, float] = {}
+        for label, a in alts.items():
+            kind = label.split(":")[0]
+            if kind not in same:
+                out[kind] = min(out.get(kind, math.inf), left(y, a))
+        return out
 
 
 def left(y: np.ndarray, x: np.ndarray) -> float:
