@@ -200,7 +200,7 @@ def _expect_revise(setup: Setup, state: ModelState, log: dict[str, Any]) -> None
     raws = [_base_raw(state, list(combo)) for combo in _swap_combos(state, log)]
     raws += [_base_raw(state, [c for j, c in enumerate(chosen) if j != i])
              for i in range(len(chosen) - 1)]
-    if sum(not c.correction for c in chosen) < setup.max_effects:
+    if _room(setup, chosen) > 0:
         _expect_grid(state.raw, setup.record.t, raws[1:])
     else:
         ahead.expect(raws[1:] + _bent_raws(state.raw, state.chosen), replace=True)
@@ -216,6 +216,12 @@ def _noise_weight(residual, measured) -> float:
 
 # ------------------------------------------------------------------------------- search
 
+def _room(setup: Setup, chosen: Sequence[Choice]) -> int:
+    """How many more new effects the search may accept (a correction of a declared term
+    does not count)."""
+    return setup.max_effects - sum(not c.correction for c in chosen)
+
+
 def _resolved(setup: Setup, state: ModelState) -> bool:
     """Every probe's residual is below the resolution of a record: nothing left to find."""
     return all(below_resolution(state.fit.residuals[p], setup.record[p]) for p in setup.probes)
@@ -227,8 +233,7 @@ def search(setup: Setup, state: ModelState, screen_top: int, clock: dict[str, fl
     log: dict[str, Any] = {"rejected": [], "indistinct": [], "trials": {}, "tried": set()}
     clock.setdefault("screen", 0.0)
     clock.setdefault("refit", 0.0)
-    while (sum(not c.correction for c in state.chosen) < setup.max_effects
-           and not _resolved(setup, state)):
+    while _room(setup, state.chosen) > 0 and not _resolved(setup, state):
         t0 = time.perf_counter()
         screens = _screen_round(setup, state, log)
         clock["screen"] += time.perf_counter() - t0
@@ -445,7 +450,7 @@ def _after_win(setup: Setup, state: ModelState, best: Proposal, won) -> list:
     """What is compiled first after ``best`` is accepted (``won``: the netlist with it), as
     it mostly is: the next round's order scan -- or, when it reaches the limit of effects and
     no round follows, the circuits the law test bends at the end (``_bent_raws``)."""
-    if best.correction or sum(not c.correction for c in state.chosen) + 1 < setup.max_effects:
+    if best.correction or _room(setup, state.chosen) > 1:
         return [patched_raw(won, np.asarray(setup.record.t, float))]
     return _bent_raws(won, [*state.chosen, Choice(best.candidate, False)])
 
@@ -656,7 +661,7 @@ def _stand_ins(setup: Setup, state0: ModelState, state: ModelState, log: dict[st
     log["named_share"] = gain / (gain + left) if gain + left > 0 else 1.0
     if log["named_share"] >= NAMED_SHARE_MIN:
         return state
-    if len(new) >= setup.max_effects:
+    if _room(setup, state.chosen) <= 0:
         # the search stopped at the cap, not for want of a candidate: the rest may well be
         # the catalog's, so nothing says these are stand-ins (the share is reported)
         setup.log(f"the effects found explain {log['named_share']:.0%} of the structure; the "
