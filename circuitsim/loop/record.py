@@ -63,8 +63,24 @@ class Record:
     @property
     def uniform(self) -> bool:
         """True when the sample spacing is constant (to 1e-6 relative)."""
-        dt = np.diff(self.t)
-        return bool(np.ptp(dt) <= 1e-6 * np.mean(dt))
+        return is_uniform(self.t)
+
+
+#: relative spread of the sample spacing up to which a record counts as evenly sampled
+EVEN = 1e-6
+
+
+def is_uniform(t: np.ndarray, jitter: float = EVEN) -> bool:
+    """True when the spacing of the times ``t`` [s] is constant to ``jitter`` (relative)."""
+    dt = np.diff(np.asarray(t, float))
+    return bool(np.ptp(dt) <= jitter * np.mean(dt))
+
+
+def even_grid(t: np.ndarray, jitter: float = EVEN) -> np.ndarray:
+    """``t`` [s] itself when evenly spaced (to ``jitter``), else as many evenly spaced times
+    over the same span."""
+    t = np.asarray(t, float)
+    return t if t.size < 3 or is_uniform(t, jitter) else np.linspace(t[0], t[-1], t.size)
 
 
 def _row_error(path: str) -> Callable[[str, int], DataError]:

@@ -32,7 +32,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from circuitsim.loop.record import Record
+from circuitsim.loop.record import Record, even_grid
 
 WORK_ROWS = 50_000  # a record is reduced to no fewer rows (spectra and windows need them)
 MARGIN = 2.0  # the filter's flat band reaches this factor beyond the highest content
@@ -131,7 +131,8 @@ def reduce_record(record: Record, probes: Sequence[str] | None = None, *,
                                  f"Hz it can hold: not oversampled")
     if progress is not None:
         progress(f"record: filtering, then keeping one row in {q} of {n}")
-    grid, resampled = _uniform_grid(t)
+    grid = even_grid(t, JITTER)
+    resampled = grid is not t
     out = {k: _decimate(np.interp(grid, t, v) if resampled else np.asarray(v, float), q)
            for k, v in record.columns.items()}
     t_work = grid[::q]
@@ -139,15 +140,6 @@ def reduce_record(record: Record, probes: Sequence[str] | None = None, *,
               f"Nyquist frequency ({nyquist:.4g} Hz); the rest is noise")
     return (Record(np.ascontiguousarray(t_work), out, record.path),
             Reduction(n, t_work.size, q, rate, content, reason, resampled))
-
-
-def _uniform_grid(t: np.ndarray) -> tuple[np.ndarray, bool]:
-    """The record's own times when they are uniform (to JITTER), else a uniform grid over
-    the same span with as many points."""
-    dt = np.diff(t)
-    if float(np.ptp(dt)) <= JITTER * float(np.mean(dt)):
-        return t, False
-    return np.linspace(float(t[0]), float(t[-1]), t.size), True
 
 
 def _content(x: np.ndarray, rate: float) -> float:

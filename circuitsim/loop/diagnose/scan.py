@@ -22,6 +22,7 @@ before any decision, as a spectral line's is.
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import math
 from collections.abc import Mapping, Sequence
@@ -33,6 +34,7 @@ import numpy as np
 from circuitsim.errors import CircuitsimError, SourceLoc
 from circuitsim.loop.diagnose.context import ModelState, Setup, compile_raw, simulate_many
 from circuitsim.loop.diagnose.noise import Whitener, whiteners_of
+from circuitsim.loop.record import Record, even_grid
 
 #: the highest order scanned; also bounded by a ripple's frequency at the shaft's top speed
 #: (ORDER_NYQUIST of the record's Nyquist frequency) and by its travel (one period at least)
@@ -110,6 +112,7 @@ def patched_raw(raw, t: np.ndarray):
     sites = sites_of(build(raw))
     if not sites or t.size < 2:
         return None
+    t = even_grid(t)  # the grid the scan runs on
     return _patched(raw, sites, RISE * float(t[1] - t[0]), 2.0 * float(t[-1]) + 1.0)
 
 
@@ -121,11 +124,13 @@ def orders_by_gain(setup: Setup, state: ModelState, margin: float,
     from circuitsim.netlist.load import build
 
     known = known or {}
-    t = np.asarray(setup.record.t, float)
-    if t.size < 64 or not setup.record.uniform:
-        setup.log("order scan skipped: the record is not uniformly sampled"
-                  if t.size >= 64 else "order scan skipped: the record is too short")
+    if setup.n < 64:
+        setup.log("order scan skipped: the record is too short")
         return {}
+    residuals, moved = state.fit.residuals, not setup.record.uniform
+    if moved:
+        setup, residuals = _evenly(setup, residuals)
+    t = np.asarray(setup.record.t, float)
     sites = [s for s in sites_of(build(state.raw)) if _turns(state, s.shaft)]
     kernels = _step_responses(setup, state, sites) if sites else None
     if kernels is None:
@@ -133,8 +138,9 @@ def orders_by_gain(setup: Setup, state: ModelState, margin: float,
             setup.log("order scan skipped: its step responses could not be simulated")
         return {}
     base, responses, onsets = kernels
-    whiten = whiteners_of(state.fit.residuals, setup.probes)
-    e0 = {p: (np.asarray(setup.record[p], float) - np.asarray(base[p], float))
+    whiten = whiteners_of(residuals, setup.probes)
+    e0 = {p: (np.asarray(residuals[p], float) if moved else
+              np.asarray(setup.record[p], float) - np.asarray(base[p], float))
           / setup.weights[p] for p in setup.probes}
     ew = np.concatenate([whiten[p].apply(e0[p]) for p in setup.probes])
     convs = {site: _Convolver(g, onsets, t.size) for site, g in responses.items()}
@@ -153,6 +159,24 @@ def orders_by_gain(setup: Setup, state: ModelState, margin: float,
             if k not in out.setdefault(site.shaft, []):
                 out[site.shaft].append(k)
     return out
+
+
+def _evenly(setup: Setup, residuals: Mapping[str, np.ndarray]
+            ) -> tuple[Setup, dict[str, np.ndarray]]:
+    """An unevenly sampled record's setup on an even grid of as many samples over the same
+    span (``even_grid``), and the fitted residual interpolated linearly onto it: the
+    convolution needs one sampling interval. The record's columns there are that residual,
+    never read as a measurement, and the model is run on the new grid itself: interpolating
+    a fast measured waveform would leave its interpolation error as structure. Interpolation
+    keeps an order's phase; it lowers its amplitude by at most cos(pi f dt), 0.71 at the
+    highest order scanned (``ORDER_NYQUIST``), less on average. That is enough to rank
+    orders: each proposed one is screened and refitted on the record's own samples."""
+    t = np.asarray(setup.record.t, float)
+    grid = even_grid(t)
+    moved = {p: np.interp(grid, t, np.asarray(residuals[p], float)) for p in setup.probes}
+    setup.log(f"order scan on an even grid of {grid.size} samples: the record's times are "
+              f"uneven")
+    return dataclasses.replace(setup, record=Record(grid, moved, setup.record.path)), moved
 
 
 def _turns(state: ModelState, shaft: str) -> bool:
