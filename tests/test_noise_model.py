@@ -9,8 +9,10 @@ import pytest
 from circuitsim.loop.diagnose.noise import (
     fit_whitener,
     fractional_difference,
+    lines_of,
     memory_order,
     memory_whiteners,
+    significant_lines,
 )
 
 
@@ -67,3 +69,73 @@ def test_a_residual_full_of_structure_is_not_given_a_long_memory():
     lines = sum(2.0 * np.sin(2 * np.pi * f * t + f) for f in (0.021, 0.037, 0.052, 0.11))
     assert memory_whiteners({"x": noise}, ["x"])["x"].d > 0.3
     assert memory_whiteners({"x": noise + lines}, ["x"])["x"].d == 0.0
+
+
+# ------------------------------------------------------------ lines on uneven times
+
+N_LOG = 3000  # samples of a logger's record
+
+
+def _logger_times(seed: int) -> np.ndarray:
+    """A logger's timestamps [s]: intervals between 0.6 and 2.6 times their mean, 1.25 ms."""
+    steps = np.random.default_rng(seed).uniform(0.6, 2.6, N_LOG - 1) * 1.25e-3 / 1.6
+    return np.concatenate([[0.0], np.cumsum(steps)])
+
+
+def _ou(t: np.ndarray, tau: float, seed: int) -> np.ndarray:
+    """An Ornstein-Uhlenbeck noise of unit variance and correlation time ``tau`` [s], at the
+    times ``t`` exactly: coloured in time, whatever the spacing of the samples."""
+    rng = np.random.default_rng(seed)
+    x = np.empty(t.size)
+    x[0] = rng.normal()
+    for k in range(1, t.size):
+        a = np.exp(-(t[k] - t[k - 1]) / tau)
+        x[k] = a * x[k - 1] + np.sqrt(1.0 - a * a) * rng.normal()
+    return x
+
+
+def test_lines_of_even_times_are_the_periodogram_of_the_whitened_residual():
+    t = np.arange(N_LOG) * 1e-3
+    r = 0.3 * np.sin(2 * np.pi * 60.0 * t) + np.random.default_rng(3).normal(size=N_LOG)
+    w = fit_whitener(r)
+    e = w.apply(r)
+    got, ref = lines_of(e, t, r, w), significant_lines(e, 1e-3)
+    assert np.array_equal(got.freqs, ref.freqs) and got.structured == ref.structured
+
+
+def test_a_line_on_a_loggers_uneven_times_is_found_where_the_raw_periodogram_loses_it():
+    """A 60 Hz line holding 4.3 % of the residual, sampled at 800 Hz on average with
+    intervals from 0.6 to 2.6 times the mean (8 records). Read as if even, its phase wanders
+    with the accumulated timing error: at most a quarter of its power stands out (none in 5
+    of the 8). On the even grid it is found at 60 Hz with 40-125 % of the power the same line
+    and noise give on even times (measured 0.55-1.03): the interpolation lowers a line's
+    amplitude (by cos(pi f dt) on average over an interval) and weighs the samples of long
+    intervals more, which raises the noise at low frequencies."""
+    for seed in range(8):
+        t = _logger_times(4 + seed)
+        noise = np.random.default_rng(5 + seed).normal(size=N_LOG)
+        shares = []
+        for times in (t, np.linspace(0.0, t[-1], N_LOG)):
+            r = 0.3 * np.sin(2 * np.pi * 60.0 * times + 0.3) + noise
+            w = fit_whitener(r)
+            e = w.apply(r)
+            lines = lines_of(e, times, r, w)
+            assert lines.freqs.size and np.all(np.abs(lines.freqs - 60.0) < 1.0), lines.freqs
+            shares.append(lines.structured / lines.total)
+            if times is t:
+                raw = significant_lines(e, float(np.mean(np.diff(t))))
+                shares.append(raw.structured / raw.total)
+        uneven, raw, even = shares
+        assert 0.4 < uneven / even < 1.25 and raw < 0.25 * even, (seed, shares)
+
+
+@pytest.mark.parametrize("tau", [0.0, 5e-3])
+def test_noise_alone_on_a_loggers_uneven_times_holds_no_line(tau):
+    """White noise, and a noise coloured in time (Ornstein-Uhlenbeck, 5 ms) sampled at the
+    uneven times: the interpolation colours both, the even grid's own whitening follows
+    that, and no line is found (6 seeds each)."""
+    for seed in range(6):
+        t = _logger_times(10 + seed)
+        r = _ou(t, tau, seed) if tau else np.random.default_rng(seed).normal(size=N_LOG)
+        w = fit_whitener(r)
+        assert lines_of(w.apply(r), t, r, w).freqs.size == 0, seed

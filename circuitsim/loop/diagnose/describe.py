@@ -17,6 +17,7 @@ import numpy as np
 from circuitsim.loop.diagnose.context import ModelState, Setup
 from circuitsim.loop.diagnose.noise import (
     fit_whitener,
+    lines_of,
     significant_lines,
     transient_excess,
     whiteners_of,
@@ -41,7 +42,6 @@ FOLLOW_RHO = 0.8
 def remaining(setup: Setup, state: ModelState) -> dict[str, Any]:
     """The structure left in the final model's residual, per probe, in plain terms."""
     whiten = whiteners_of(state.fit.residuals, setup.probes)
-    dt = float(np.mean(np.diff(setup.record.t)))
     shafts = shaft_frequencies(state)
     probes, resolved = {}, []
     for p in setup.probes:
@@ -50,7 +50,7 @@ def remaining(setup: Setup, state: ModelState) -> dict[str, Any]:
             resolved.append(p)
             continue
         e = whiten[p].apply(r)
-        lines = significant_lines(e, dt)
+        lines = lines_of(e, setup.record.t, r, whiten[p])
         structured = max(lines.structured, transient_excess(e))
         share = structured / lines.total if lines.total > 0 else 0.0
         _, pval = ljung_box(e)

@@ -234,6 +234,30 @@ def significant_lines(e: np.ndarray, dt: float) -> Lines:
 
 
 
+def lines_of(e: np.ndarray, t: np.ndarray, r: np.ndarray, whitener: Whitener) -> Lines:
+    """``significant_lines`` of ``e``, the residual ``r`` [probe unit] at times ``t`` [s]
+    prewhitened by ``whitener``. A periodogram needs one sampling interval: where ``t`` is
+    uneven (a logger's timestamps, whose varying intervals accumulate into a phase that
+    wanders: 0.4 s over the ODrive's slow log, and a line at a tenth of the sampling rate
+    vanishes), ``r`` is interpolated onto an even grid of as many samples over the same span,
+    whitened there by its own filter (the interpolation colours the noise, which a median
+    background would take for lines), and the lines' powers brought back to ``e``'s units
+    by the ratio of the two innovation variances. On even times this is
+    ``significant_lines(e, dt)`` itself."""
+    from circuitsim.loop.record import even_grid
+
+    t = np.asarray(t, float)
+    grid = even_grid(t)
+    if grid is t:
+        return significant_lines(e, float(np.mean(np.diff(t))))
+    moved = np.interp(grid, t, np.asarray(r, float))
+    own = fit_whitener(moved)
+    lines = significant_lines(own.apply(moved), float(grid[1] - grid[0]))
+    scale = (whitener.sigma / own.sigma) ** 2 if own.sigma > 0.0 else 1.0
+    return Lines(lines.freqs, lines.excess * scale, float(np.asarray(e, float) @ e),
+                 lines.structured * scale)
+
+
 def transient_excess(e: np.ndarray) -> float:
     """Sum of squares of ``e`` (a whitened residual) that sits in time windows standing out
     above the typical window: a transient's structure, which a periodogram spreads over many
