@@ -651,29 +651,36 @@ def test_orders_are_proposed_from_a_shaft_that_reverses():
     assert _order_peaks(sim, {"rotor": float(np.mean(w))}, t, noise, []) == []
 
 
-def test_the_worker_is_asked_for_what_the_search_needs_next(monkeypatch):
-    """The compile-ahead queue (``solve/ahead.py``), with a recorder in place of the worker:
-    a refit round queues its refits but the first (compiled here at once), and, when the
-    best would reach the limit of effects, the law test's bent circuits -- the very ones the
-    law test then compiles."""
+@pytest.fixture
+def queue(monkeypatch):
+    """A recorder in place of the compile-ahead worker (``solve/ahead.py``): (what was
+    queued, by the function that queued it; what was compiled, by the function that
+    compiled it), each as topology keys."""
+    import sys
+
     from circuitsim.solve import ahead
 
     asked: list[tuple[str, list[str]]] = []
     claimed: list[tuple[str, str]] = []
 
     def expect(raws, replace=False):
-        import sys
-
         asked.append((sys._getframe(1).f_code.co_name, [ahead._key(r) for r in raws]))
 
     def claim(raw):
-        import sys
-
         claimed.append((sys._getframe(2).f_code.co_name, ahead._key(raw)))
 
     monkeypatch.setattr(ahead, "enabled", lambda: True)
     monkeypatch.setattr(ahead, "expect", expect)
     monkeypatch.setattr(ahead, "claim", claim)
+    return asked, claimed
+
+
+def test_the_worker_is_asked_for_what_the_search_needs_next(queue):
+    """The compile-ahead queue, with a recorder in place of the worker: a refit round queues
+    its refits but the first (compiled here at once), and, when the best would reach the
+    limit of effects, the law test's bent circuits -- the very ones the law test then
+    compiles."""
+    asked, claimed = queue
     rec = make_record([("viscous-friction", "rotor", None, [5e-6])], seed=3)
     d = diagnose(cs.load(MOTOR), rec, max_effects=1)
     assert [a.effect for a in d.effects] == ["viscous-friction"], d.summary()
@@ -684,3 +691,22 @@ def test_the_worker_is_asked_for_what_the_search_needs_next(monkeypatch):
     # the law test compiles its bent circuit of the final model: queued in the refit round
     bent = [k for who, k in claimed if who == "bend_of"]
     assert bent and set(bent) <= set(first)
+
+
+def test_after_an_acceptance_the_worker_is_asked_for_the_swaps_and_the_backward_step(queue):
+    """After the second acceptance (at the limit of effects), the queue holds, in the order
+    this process then compiles them, the swaps' circuits but the first (compiled here at
+    once), the backward step's, and the law test's bent circuits: each is compiled by the
+    function it was queued for."""
+    asked, claimed = queue
+    rec = make_record([("coulomb-friction", "rotor", None, [5e-4]),
+                       ("series-resistance", "Lw", None, [0.2])], seed=5)
+    d = diagnose(cs.load(MOTOR), rec, max_effects=2)
+    assert len(d.effects) == 2, d.summary()
+    revise = [keys for who, keys in asked if who == "_expect_revise"]
+    assert len(revise) == 1, asked  # only the second acceptance has swaps and a step back
+    swaps = [k for who, k in claimed if who == "_refit_choices"]
+    backward = [k for who, k in claimed if who == "_without"][:1]  # the step's, first
+    bent = [k for who, k in claimed if who == "bend_of"]
+    assert len(swaps) >= 2 and backward and bent, claimed
+    assert revise[0] == [*swaps[1:], *backward, *reversed(bent)], (revise, claimed)
