@@ -659,7 +659,7 @@ def build_parser(argv: list[str] | None = None) -> argparse.ArgumentParser:
 
     if not (argv and argv[0] in CORE_VERBS):
         for study in ("circuitsim.cli.fit", "circuitsim.cli.diagnose",
-                      "circuitsim.cli.identify"):
+                      "circuitsim.cli.identify", "circuitsim.cli.cache"):
             importlib.import_module(study).add_cli(sub)
     _add_inspection(sub)
     return ap
