@@ -42,8 +42,13 @@ MAX_ORDER = 64
 ORDER_NYQUIST = 0.5
 #: parts of the record, each with its own step response (its own linearisation)
 SEGMENTS = 4
-#: orders proposed per site: the best local maxima of its gain over the orders
-PER_SITE = 2
+#: orders proposed per site: the best local maxima of its gain over the orders. The
+#: linearisation only ranks: on a rotor that starts, brakes and reverses, where a ripple's
+#: evidence sits in the slow passages of a few turns each, neighbouring orders promise
+#: alike (fresh11's s08: a cogging of order 10 promised 497 BIC units behind orders 4 and 7
+#: at 592 and 555, while its exact refit beat order 7's by 308); three go on to the exact
+#: screen, which tells them apart
+PER_SITE = 3
 #: [N*m] / [V] the first size of a site's step; rescaled once into the linear range
 STEP = 1e-4
 #: the rise of a step, as a fraction of the sampling interval (it is complete at the sample)
