@@ -1,6 +1,6 @@
 """Run circuitsim's diagnosis on the benchmark records and score it against truth.json.
 
-    python benchmarks/diagnosis/run.py --split tune          # or heldout, fresh..fresh10, all
+    python benchmarks/diagnosis/run.py --split tune          # or heldout, fresh..fresh11, all
     python benchmarks/diagnosis/run.py --only c01,n02 --timeout 600
     python benchmarks/diagnosis/run.py --split all --score-only   # re-print from results/
 

@@ -42,13 +42,18 @@ MAX_ORDER = 64
 ORDER_NYQUIST = 0.5
 #: parts of the record, each with its own step response (its own linearisation)
 SEGMENTS = 4
-#: orders proposed per site: the best local maxima of its gain over the orders. The
-#: linearisation only ranks: on a rotor that starts, brakes and reverses, where a ripple's
-#: evidence sits in the slow passages of a few turns each, neighbouring orders promise
-#: alike (fresh11's s08: a cogging of order 10 promised 497 BIC units behind orders 4 and 7
-#: at 592 and 555, while its exact refit beat order 7's by 308); three go on to the exact
-#: screen, which tells them apart
-PER_SITE = 3
+#: orders proposed per site: the best local maxima of its gain over the orders
+PER_SITE = 2
+#: A further local maximum is proposed, up to ``MAX_PER_SITE``, while its promise is at least
+#: this share of the site's best: within the linearisation's ranking error, the scan cannot
+#: tell it from the ones before. On a rotor that starts, brakes and reverses, a ripple's
+#: evidence sits in slow passages of a few turns each, and neighbouring orders promise
+#: alike: fresh11's s08, a cogging of order 10, promised 497 BIC units, 16 % below order 4's
+#: 592 and behind order 7's 555, while its exact refit beat order 7's by 308. Proposing a
+#: third order at any promise sent fresh10's r11 (an eccentric coupling, no order of its own;
+#: third peaks at 41-64 % of the best) through two more rounds of stand-ins, 25 s to 106 s.
+CONTENDER = 0.75
+MAX_PER_SITE = 3
 #: [N*m] / [V] the first size of a site's step; rescaled once into the linear range
 STEP = 1e-4
 #: the rise of a step, as a fraction of the sampling interval (it is complete at the sample)
@@ -123,9 +128,9 @@ def patched_raw(raw, t: np.ndarray):
 
 def orders_by_gain(setup: Setup, state: ModelState, margin: float,
                    known: Mapping[str, Sequence[int]] | None = None) -> dict[str, list[int]]:
-    """Orders per shaft whose linearised gain promises a BIC fall above ``margin``: at most
-    ``PER_SITE`` a site besides the ``known`` ones, local maxima of the gain over the orders,
-    best first."""
+    """Orders per shaft whose linearised gain promises a BIC fall above ``margin``: local
+    maxima of the gain over the orders, best first, besides the ``known`` ones, as many a
+    site as ``_peaks`` lets through."""
     from circuitsim.netlist.load import build
 
     known = known or {}
@@ -346,9 +351,12 @@ def _midpoints(x: np.ndarray) -> np.ndarray:
 
 def _peaks(promises: np.ndarray, margin: float, known: set[int]) -> list[int]:
     """Orders (1-based), not ``known`` nor 1 (looked for on every shaft already), at local
-    maxima of ``promises`` above ``margin``, best first."""
+    maxima of ``promises`` above ``margin``, best first: ``PER_SITE`` of them, and more up to
+    ``MAX_PER_SITE`` while they promise ``CONTENDER`` of the best."""
     ks = [k for k in range(1, len(promises)) if promises[k] > margin
           and k + 1 not in known and promises[k] > promises[k - 1]
           and (k == len(promises) - 1 or promises[k] >= promises[k + 1])]
     ks.sort(key=lambda k: -promises[k])
-    return [k + 1 for k in ks[:PER_SITE]]
+    best = promises[ks[0]] if ks else 0.0
+    ks = ks[:PER_SITE] + [k for k in ks[PER_SITE:MAX_PER_SITE] if promises[k] >= CONTENDER * best]
+    return [k + 1 for k in ks]
