@@ -9,6 +9,7 @@ them. Noise: speed 0.1 rad/s and current 1 mA (1 sigma); ADC steps 0.05 rad/s an
 from __future__ import annotations
 
 import json
+import math
 import warnings
 
 import numpy as np
@@ -345,6 +346,47 @@ def test_effects_that_explain_less_than_they_leave_are_a_partial_stand_in(a, b):
         setup.max_effects = 1
         log = {"rejected": []}
         assert _stand_ins(setup, before, after, log) is after and not log["rejected"]
+
+
+@pytest.mark.parametrize("worse", [0.0, 0.02, 0.2])
+def test_effects_that_fit_one_probe_worse_trade_the_probes(worse):
+    """Stage 5a (engine._trades): two probes of unit white noise; the declared model misses
+    a 37 Hz line in ``a`` and fits ``b``; the effect removes the line and adds a square wave
+    of amplitude ``worse`` to ``b``. The rise of ``b`` is sum(square^2) noise variances, within
+    five sigma of the noise's cross term with it (2 sqrt(sum(square^2))). Kept when the
+    rise is within the 5-sigma chance rise (none, or 0.02: about 4 variances), kept out with
+    the probe named when it is far past it (0.2: about 400)."""
+    from types import SimpleNamespace
+
+    from circuitsim.loop.diagnose.context import Choice, ModelState
+    from circuitsim.loop.diagnose.decide import probe_rises
+    from circuitsim.loop.diagnose.engine import TRADE_Z, _trades
+
+    rng = np.random.default_rng(3)
+    t = np.arange(20000) * 1e-4
+    na, nb = rng.normal(size=t.size), rng.normal(size=t.size)
+    line = 0.3 * np.sin(2 * np.pi * 37 * t)
+    square = worse * np.sign(np.sin(2 * np.pi * 5 * t)) * (t > 1.0)
+    said: list[str] = []
+    setup = SimpleNamespace(probes=("a", "b"), record=SimpleNamespace(t=t), log=said.append)
+    effect = SimpleNamespace(effect="sensor-offset", target="a", free={"o": (0.0, -1, 1)})
+    before = ModelState(None, None, [], {}, SimpleNamespace(residuals={"a": na + line,
+                                                                        "b": nb}), {})
+    after = ModelState(None, None, ["o"], {"o": 0.1}, SimpleNamespace(
+        residuals={"a": na, "b": nb + square}), {}, [Choice(effect)])
+    rises = probe_rises(setup, before, after)
+    size = float(np.sum(square**2))
+    assert rises["b"] == pytest.approx(size, abs=5 * 2 * math.sqrt(size) + 1.0)
+    assert rises["a"] == pytest.approx(-np.sum(line**2), rel=0.1)  # the line it removed
+    log: dict = {"rejected": []}
+    out = _trades(setup, before, after, log)
+    if size < TRADE_Z**2 / 4:
+        assert out is after and not log["rejected"] and not said
+    else:
+        assert size > 4 * TRADE_Z**2
+        assert out is before and [r["effect"] for r in log["rejected"]] == ["sensor-offset"]
+        assert "trades the probes" in log["stand_ins"] and "b (by" in log["stand_ins"]
+        assert "a (by" not in log["stand_ins"]
 
 
 def test_what_remains_is_said_to_grow_with_the_signal_that_drives_it():

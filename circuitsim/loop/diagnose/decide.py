@@ -196,6 +196,19 @@ def explained_and_left(setup: Setup, before: ModelState, after: ModelState
     return gain, left
 
 
+def probe_rises(setup: Setup, before: ModelState, after: ModelState) -> dict[str, float]:
+    """Per probe, how much worse ``after`` fits it than ``before``: the rise of its whitened
+    sum of squares in units of its whitened noise variance (negative: it fits better), the
+    filter learnt on ``after``'s residual as ``judge`` learns it."""
+    whiten = whiteners_of(after.fit.residuals, setup.probes)
+    old, new = before.whitened(setup, whiten), after.whitened(setup, whiten)
+    out = {}
+    for p in setup.probes:
+        var = max(new[p] / max(np.asarray(after.fit.residuals[p]).size, 1), 1e-300)
+        out[p] = (new[p] - old[p]) / var
+    return out
+
+
 def _in_noise_units(setup: Setup, whiten, old: Mapping[str, float], new: Mapping[str, float],
                     residuals, orders: list[tuple[float, float]] = ()
                     ) -> tuple[float, float, float]:

@@ -16,7 +16,8 @@ The stages, each a function of plain objects (``context``):
    present and dropped when it is no longer needed; when no single candidate passes, the best
    two are tried together (one effect may have been absorbing two). ``_stand_ins``: at the
    end, effects that together explain less of the declared model's misfit than the structure
-   they leave are a partial stand-in for a cause outside the catalog, and kept out.
+   they leave are a partial stand-in for a cause outside the catalog, and kept out; so are
+   effects that fit some probe worse than the declared model did (``_trades``).
    ``_unstable``: an effect whose parameters, fitted on each quarter of the record, differ by
    as much as a fair part of the effect (``stability``) fits such a cause only on average: it
    is a stand-in too; so is one whose values differ between bands of the record's spectrum,
@@ -52,6 +53,7 @@ from circuitsim.loop.diagnose.decide import (
     Trial,
     explained_and_left,
     judge,
+    probe_rises,
     refit_trial,
 )
 from circuitsim.loop.diagnose.describe import remaining
@@ -90,6 +92,11 @@ MAX_COMBINATIONS = 10  # joint swaps tried after an acceptance
 #: blind miss d11 at 0.55, drops the four cogging orders of the ODrive's real log at 0.61:
 #: a real machine leaves structure no catalog names, and this share cannot tell the two.)
 NAMED_SHARE_MIN = 0.5
+#: A probe fitted worse by the final model than by the declared one, by more than this many
+#: of its whitened noise variances plus one per parameter the effects add, marks a trade:
+#: where the effects are the cause, the rise is at most the noise's cross term with the
+#: misfit removed, which peaks at (TRADE_Z sigma)^2 -- so 25 is a 5-sigma rise.
+TRADE_Z = 5.0
 
 
 @serial_blas
@@ -126,6 +133,7 @@ def diagnose(netlist, record, free: Sequence[str] = (), *, probes: Sequence[str]
                                  progress)
     clock = {"fit_declared": time.perf_counter() - start}
     state, log = search(setup, state0, screen_top, clock)
+    state = _trades(setup, state0, state, log)
     state = _stand_ins(setup, state0, state, log)
     state = _unstable(setup, state0, state, log)
     # what the search spent outside screening and refits: the backward step and swaps
@@ -643,6 +651,39 @@ def _without(setup: Setup, state: ModelState, keep: list[Choice]) -> ModelState 
         return None
     return ModelState(raw, model, free, dict(fit.params), fit, state.bounds, keep,
                       state.base_raw)
+
+
+def _trades(setup: Setup, state0: ModelState, state: ModelState, log: dict[str, Any]
+            ) -> ModelState:
+    """Stage 5a: effects that are the cause leave each probe with its noise alone, so no
+    probe may fit worse than under the declared model beyond a ``TRADE_Z``-sigma chance
+    rise. Effects that buy a better total by fitting one probe worse trade the probes
+    against each other -- a series resistance taken for belt creep fits the current and the
+    pulley's speed better and the motor's speed worse: they stand in for a cause outside the
+    catalog, and are kept out of the netlist with the reason (corrections stay)."""
+    new = [c for c in state.chosen if not c.correction]
+    if not new:
+        return state
+    k = sum(len(c.candidate.free) for c in new)
+    rises = probe_rises(setup, state0, state)
+    worse = {p: r for p, r in rises.items() if r > TRADE_Z**2 + k}
+    if not worse:
+        return state
+    keep = [c for c in state.chosen if c.correction]
+    reduced = _without(setup, state, keep) if keep else state0
+    if reduced is None:
+        return state  # no model without them to report: they stay, as they were found
+    names = ", ".join(f"{c.candidate.effect} on {c.candidate.target}" for c in new)
+    probes = ", ".join(f"{p} (by {r:.0f} noise variances)" for p, r in worse.items())
+    why = (f"a stand-in that trades the probes: with {names} the record is fitted better as "
+           f"a whole but {probes} worse than by the declared model, which a cause present "
+           f"in the data does not do; not accepted")
+    setup.log(why)
+    log["stand_ins"] = why
+    for c in new:
+        log["rejected"].append({"effect": c.candidate.effect, "target": c.candidate.target,
+                                "reason": why})
+    return reduced
 
 
 def _stand_ins(setup: Setup, state0: ModelState, state: ModelState, log: dict[str, Any]
