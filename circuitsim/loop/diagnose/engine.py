@@ -669,15 +669,23 @@ def _trades(setup: Setup, state0: ModelState, state: ModelState, log: dict[str, 
     worse = {p: r for p, r in rises.items() if r > TRADE_Z**2 + k}
     if not worse:
         return state
+    probes = ", ".join(f"{p} (by {r:.0f} noise variances)" for p, r in worse.items())
+    return _kept_out(setup, state0, state, log, lambda names: (
+        f"a stand-in that trades the probes: with {names} the record is fitted better as a "
+        f"whole but {probes} worse than by the declared model, which a cause present in the "
+        f"data does not do; not accepted"))
+
+
+def _kept_out(setup: Setup, state0: ModelState, state: ModelState, log: dict[str, Any],
+              reason) -> ModelState:
+    """The model without its new effects (corrections stay), each rejected for ``reason``
+    (given their names); the model as it is when that cannot be refitted."""
+    new = [c for c in state.chosen if not c.correction]
     keep = [c for c in state.chosen if c.correction]
     reduced = _without(setup, state, keep) if keep else state0
     if reduced is None:
         return state  # no model without them to report: they stay, as they were found
-    names = ", ".join(f"{c.candidate.effect} on {c.candidate.target}" for c in new)
-    probes = ", ".join(f"{p} (by {r:.0f} noise variances)" for p, r in worse.items())
-    why = (f"a stand-in that trades the probes: with {names} the record is fitted better as "
-           f"a whole but {probes} worse than by the declared model, which a cause present "
-           f"in the data does not do; not accepted")
+    why = reason(", ".join(f"{c.candidate.effect} on {c.candidate.target}" for c in new))
     setup.log(why)
     log["stand_ins"] = why
     for c in new:
@@ -708,20 +716,11 @@ def _stand_ins(setup: Setup, state0: ModelState, state: ModelState, log: dict[st
         setup.log(f"the effects found explain {log['named_share']:.0%} of the structure; the "
                   f"search stopped at its limit of {setup.max_effects} effects")
         return state
-    keep = [c for c in state.chosen if c.correction]
-    reduced = _without(setup, state, keep) if keep else state0
-    if reduced is None:
-        return state  # no model without them to report: they stay, as they were found
-    names = ", ".join(f"{c.candidate.effect} on {c.candidate.target}" for c in new)
-    why = (f"a partial stand-in: {names} would explain {log['named_share']:.0%} of the "
-           f"structure the declared model misses, and leave the rest -- more than they "
-           f"explain -- that no catalog effect explains; not accepted")
-    setup.log(why)
-    log["stand_ins"] = why
-    for c in new:
-        log["rejected"].append({"effect": c.candidate.effect, "target": c.candidate.target,
-                                "reason": why})
-    return reduced
+    share = log["named_share"]
+    return _kept_out(setup, state0, state, log, lambda names: (
+        f"a partial stand-in: {names} would explain {share:.0%} of the structure the "
+        f"declared model misses, and leave the rest -- more than they explain -- that no "
+        f"catalog effect explains; not accepted"))
 
 
 def _unstable(setup: Setup, state0: ModelState, state: ModelState, log: dict[str, Any]
