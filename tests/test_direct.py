@@ -455,3 +455,28 @@ def test_topologies_of_the_same_code_share_one_kernel_module(compile_text, monke
         w, phi = kernels["w"], kernels["phi"]
         energy = 0.5 * 1e-5 * w ** 2 + 0.01 / n * np.cos(n * phi)
         assert np.ptp(energy) < 1e-8 * energy[0]
+
+
+def test_an_inert_harmonic_skips_its_sine_on_both_routes_to_the_bit(compile_text, monkeypatch):
+    """A torque harmonic held at zero amplitude (the screen's joint model carries dozens) is
+    not evaluated, in the kernels (a guarded call) and in the Python code (a conditional)
+    alike: both routes agree to the bit with the harmonic inert and live, and the inert
+    rotor follows the closed form of J w' = T - b w."""
+    model = compile_text("""
+        parameters: {A: 0.0}
+        components:
+          - {name: T1, type: torque, shaft: s, T: 0.2}
+          - {name: J1, type: inertia, shaft: s, J: 1e-3}
+          - {name: B1, type: damper, shaft: s, b: 2e-3}
+          - {name: CG, type: cogging, shaft: s, harmonics: [{order: 6, amplitude: A, phase: 0.3}]}
+        probes: {w: s.w}
+        analysis: {stop: 2.0, step: 1 ms, rtol: 1e-9}
+    """)
+    assert "if_sin(" in model.meta["kernels"]
+    inert = _both(model, monkeypatch, params={"A": 0.0})
+    live = _both(model, monkeypatch, params={"A": 0.05})
+    _same(*inert)
+    _same(*live)
+    t, w = inert[1].t, inert[1]["w"]
+    assert np.allclose(w, 100.0 * (1.0 - np.exp(-2.0 * t)), rtol=1e-6, atol=1e-5)
+    assert np.max(np.abs(live[1]["w"] - w)) > 0.1  # the live harmonic acts

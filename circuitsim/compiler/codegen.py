@@ -23,8 +23,8 @@ from typing import Any
 
 from circuitsim.solve.kernel_lib import BAND_ABS, BAND_REL, KERNEL_LIB
 
-CODEGEN_VERSION = "27"  # 24-25: the root function (25: with tables); 26: batches with tables;
-# 27: relations' modes numbered in canonical order
+CODEGEN_VERSION = "28"  # 24-25: the root function (25: with tables); 26: batches with tables;
+# 27: relations' modes numbered in canonical order; 28: an inert term's function skipped
 
 # [unknowns] from here on the residual's linear part is a sparse matrix product (measured on
 # RLC ladders: 5x slower than the scalar code at 16 unknowns, 2x at 50, equal at 100) ...
@@ -39,6 +39,8 @@ def _printers():
     from sympy.printing.pycode import PythonCodePrinter
 
     class Scalar(PythonCodePrinter):
+        guard = "inline"  # an inert term's function, see _term
+
         def _print_Lookup(self, e):
             return f"T[{int(e.args[0])}]({self._print(e.args[1])})"
 
@@ -78,8 +80,11 @@ def _printers():
         def _print_Or(self, e):
             return f"functools.reduce(numpy.logical_or, [{', '.join(map(self._print, e.args))}])"
 
-    return Scalar({"fully_qualified_modules": True, "standard": "python3"}), \
-        Vector({"fully_qualified_modules": True})
+    class Kernel(Scalar):
+        guard = "call"  # the kernels' guarded calls (kernel_lib.py)
+
+    options = {"fully_qualified_modules": True, "standard": "python3"}
+    return Scalar(options), Vector({"fully_qualified_modules": True}), Kernel(options)
 
 
 def _names(dae) -> dict:
@@ -138,12 +143,45 @@ def _print(e, printer) -> str:
     if e.is_Float:
         return repr(float(e))
     if e.is_Add:
-        return "(" + " + ".join(_print(a, printer) for a in e.args) + ")"
+        return "(" + " + ".join(_term(a, printer) for a in e.args) + ")"
     if e.is_Mul:
         return "(" + "*".join(_print(a, printer) for a in e.args) + ")"
     if e.is_Pow and e.exp.is_Integer:
         return f"({_print(e.base, printer)})**({int(e.exp)})"
     return f"({printer.doprint(e)})"
+
+
+_PARAM = re.compile(r"p\d+")
+#: the functions a term may skip (``_term``), by sympy's name; each has a guarded form in the
+#: kernels' shared module (``if_<name>``, solve/kernel_lib.py)
+_GUARDED = ("sin", "cos", "exp", "tanh", "sinh", "cosh", "atan")
+
+
+def _term(a, printer) -> str:
+    """A term of a sum. A product of parameters and a function (a harmonic's amplitude times
+    its sine, a friction level times its tanh) evaluates the function only while the
+    parameters' product is not zero: the screen's joint model carries dozens of inert
+    patches at their null values, and every batch member paid every one of their
+    transcendental calls. The value is the product's but for the sign of a zero and a
+    non-finite function value, which an inert term no longer passes on. The scalar code
+    (the Python route) and the kernels skip alike, so they stay equal to the bit."""
+    form = getattr(printer, "guard", None)
+    if form is None or not a.is_Mul:
+        return _print(a, printer)
+    zeros = [f.name for f in a.args if f.is_Symbol and _PARAM.fullmatch(f.name)]
+    skip = [f.func.__name__ in _GUARDED and len(f.args) == 1 for f in a.args]
+    if not zeros or not any(skip):
+        return _print(a, printer)
+    z = "*".join(zeros)
+    parts = []
+    for f, guarded in zip(a.args, skip, strict=True):
+        text = _print(f, printer)
+        head = f"(math.{f.func.__name__}("
+        if guarded and text.startswith(head):
+            text = (f"if_{f.func.__name__}({z}, {text[len(head):-1]}" if form == "call" else
+                    f"({text} if {z} != 0.0 else 0.0)")
+        parts.append(text)
+    return "(" + "*".join(parts) + ")"
 
 
 def _unpack(n: int, prefix: str, src: str, indent: str, used: set[str]) -> list[str]:
@@ -362,8 +400,8 @@ import numpy
 from numba import carray, njit
 
 from {KERNEL_LIB} import (JAC, RES, ROOT, as_pointer, band_data, band_ldim, band_smu,  # noqa: F401
-                           data_of, libm_pow, sparse_data, sparse_ptrs, sparse_rows, tab,
-                           tab_slope)
+                           data_of, if_atan, if_cos, if_cosh, if_exp, if_sin, if_sinh, if_tanh,
+                           libm_pow, sparse_data, sparse_ptrs, sparse_rows, tab, tab_slope)
 
 CFUNCS = {{}}
 '''
@@ -691,7 +729,7 @@ def generate(dae) -> tuple[str, dict[str, Any]]:
 
     from circuitsim.component import as_expr
 
-    scalar, vector = _printers()
+    scalar, vector, kernel = _printers()
     ren = _names(dae)
     n, n_par = len(dae.states), len(dae.params)
     F = [as_expr(e).xreplace(ren) for e in dae.equations]
@@ -736,9 +774,9 @@ def generate(dae) -> tuple[str, dict[str, Any]]:
                  "fy_pattern": [[i for i, _ in fy], [j for _, j in fy]],
                  "fyp_pattern": [[i for i, _ in fyp], [j for _, j in fyp]], **lin_meta})
     # the kernels repeat the Python route's arithmetic (the sparse product from 100 unknowns)
-    meta["kernels"] = (_kernels(F, jac_exprs, pattern, n, n_par, scalar, _guard_parts(dae, ren))
+    meta["kernels"] = (_kernels(F, jac_exprs, pattern, n, n_par, kernel, _guard_parts(dae, ren))
                        if n < MATRIX_RESIDUAL_FROM else
-                       _large_kernels(rest, lin_meta, jac_exprs, pattern, n, n_par, scalar))
+                       _large_kernels(rest, lin_meta, jac_exprs, pattern, n, n_par, kernel))
     return "\n".join(src), meta
 
 

@@ -117,12 +117,12 @@ class _Worker:
                     queued.add(key)
             self._next()
 
-    def lend(self, key: str, payload: Any) -> None:
-        """Put a job at the head of the queue (a caller waits for it soon)."""
+    def lend(self, jobs: list[tuple[str, Any]]) -> None:
+        """Put jobs at the head of the queue, in their order (a caller waits for them soon)."""
         with self.cond:
-            if key in self.done or key == self.running:
-                return
-            self.queue = [(key, payload), *((k, r) for k, r in self.queue if k != key)]
+            jobs = [(k, r) for k, r in jobs if k not in self.done and k != self.running]
+            keys = {k for k, _ in jobs}
+            self.queue = [*jobs, *((k, r) for k, r in self.queue if k not in keys)]
             self._next()
 
     def claim(self, raw) -> None:
@@ -252,10 +252,11 @@ def claim(raw) -> None:
         worker.claim(raw)
 
 
-def lend(source: str, names: list[str]) -> str | None:
-    """Have the worker compile the cfuncs ``names`` of the kernel module of ``source`` now,
-    before anything queued, while the caller compiles others; the job's key for
-    ``claim_job``, or None without a worker (the caller compiles them itself)."""
+def lend(source: str, *names: list[str]) -> list[str] | None:
+    """Have the worker compile cfuncs of the kernel module of ``source`` now, before anything
+    queued, while the caller compiles others: one job for each list of ``names``, in their
+    order. The jobs' keys for ``claim_job``, or None without a worker (the caller compiles
+    them itself)."""
     from circuitsim.memo import open_cache_dir
     from circuitsim.solve.direct import kernel_name
 
@@ -263,9 +264,10 @@ def lend(source: str, names: list[str]) -> str | None:
     if worker is None or not worker.alive or not enabled() or \
             open_cache_dir()[0] != worker.folder:  # it compiles into another folder
         return None
-    key = f"kernels {kernel_name(source)} {' '.join(names)}"
-    worker.lend(key, ("kernels", source, tuple(names)))
-    return key
+    jobs = [(f"kernels {kernel_name(source)} {' '.join(part)}", ("kernels", source, tuple(part)))
+            for part in names if part]
+    worker.lend(jobs)
+    return [key for key, _ in jobs]
 
 
 def claim_job(key: str) -> None:

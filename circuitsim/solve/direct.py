@@ -193,11 +193,16 @@ def _kept(module, name: str) -> bool:
 _LENDER: list[tuple[Callable, Callable]] = []
 
 
-def lend_to(lend: Callable[[str, list[str]], str | None], claim: Callable[[str], None]
-            ) -> None:
-    """Hand a model's Jacobian kernels to ``lend`` (kernel source, names -> a job or None)
-    while this process compiles the residual's; ``claim`` (the job) before using them."""
+def lend_to(lend: Callable[..., list[str] | None], claim: Callable[[str], None]) -> None:
+    """Hand kernels to ``lend`` (kernel source, lists of names -> a job for each, or None)
+    while this process compiles others; ``claim`` (a job) before using them."""
     _LENDER[:] = [(lend, claim)]
+
+
+#: a model's kernels of one member, lent to the worker when a batch first asks for the stacked
+#: ones: the screen re-steps a candidate alone in its joint model soon after (Jacobian and
+#: root function first: their bodies are the worker's own by then, the residual's this one's)
+_SINGLES = ("jacobian", "roots", "residual")
 
 
 def _compile_shared(module, model, names: tuple[str, ...]) -> None:
@@ -205,16 +210,26 @@ def _compile_shared(module, model, names: tuple[str, ...]) -> None:
     compiled from functions of their own, and a Jacobian not kept yet is lent to the
     compile-ahead worker (``lend_to``) while this process compiles the residual: numba keeps
     it in the cache both share, and it is loaded from there (or compiled here when the worker
-    had not started on it)."""
-    held = module.__dict__.get("_COMPILED", {})
+    had not started on it). A batch's stacked kernels lend the single member's too, for later
+    (``_SINGLES``), claimed when asked for."""
+    held = module.__dict__.setdefault("_COMPILED", {})
+    lent_before = module.__dict__.setdefault("_LENT", {})
+    for name in names:
+        if name in lent_before and _LENDER:
+            _LENDER[0][1](lent_before.pop(name))
     todo = [n for n in names if n not in held and not _kept(module, n)]
     lent = [n for n in todo[1:] if n.startswith("jacobian") and not _kept(module, "_jacobian_at")]
-    job = _LENDER[0][0](model.meta["kernels"], lent) if lent and _LENDER else None
-    if job is not None:  # what is not lent, here meanwhile; then the lent, from the cache
+    later = [n for n in _SINGLES if "residual_batch" in todo and n in module.CFUNCS
+             and n not in held and n not in lent_before and not _kept(module, n)]
+    jobs = _LENDER[0][0](model.meta["kernels"], lent, later) if (lent or later) and _LENDER \
+        else None
+    if jobs and later:
+        lent_before.update(dict.fromkeys(later, jobs[-1]))
+    if jobs and lent:  # what is not lent, here meanwhile; then the lent, from the cache
         for name in todo:
             if name not in lent:
                 cfunc(module, name)
-        _LENDER[0][1](job)
+        _LENDER[0][1](jobs[0])
     for name in names:
         cfunc(module, name)
 
