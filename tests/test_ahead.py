@@ -133,6 +133,33 @@ def test_a_lent_jacobian_is_compiled_by_the_worker_and_loaded_here(fresh, monkey
     assert with_kernels.success and np.array_equal(with_kernels.y, plain.y)
 
 
+def test_a_batch_lends_the_single_kernels_for_later(fresh, monkeypatch):
+    """The stacked kernels' compile lends the band Jacobian and, behind it, the single
+    member's kernels; a single run later claims them and loads them from the cache."""
+    from circuitsim.solve.batch import simulate_batch
+
+    other, raw = fresh("b1", "  - {name: R2, type: R, p: out, n: gnd, R: 1 Mohm}"), fresh("b2")
+    ahead.expect([other])  # the worker is up
+    assert _wait_done(other)
+    model = _compiled(raw)
+    module = direct.kernels(model)
+    direct._compile_shared(module, model, ("residual_batch", "jacobian_band"))
+    name = direct.kernel_name(model.meta["kernels"])
+    singles = f"kernels {name} " + " ".join(n for n in direct._SINGLES if n in module.CFUNCS)
+    assert set(module._LENT) == {n for n in direct._SINGLES if n in module.CFUNCS}
+    direct._compile_shared(module, model, ("residual", "jacobian"))  # claims, then loads
+    worker = ahead._WORKER[0]
+    assert f"kernels {name} jacobian_band" in worker.done and singles in worker.done
+    assert direct.cfunc(module, "residual").cache_hits  # compiled there, loaded here
+    assert not direct.cfunc(module, "residual_batch").cache_hits
+    sets = [{"Rb2.R": 1000.0 * (1 + 1e-3 * j)} for j in range(3)]
+    batch = simulate_batch(model, sets)
+    single = model.simulate(params=sets[1])
+    monkeypatch.setenv("CIRCUITSIM_KERNELS", "python")
+    plain = model.simulate(params=sets[1])
+    assert all(r.success for r in batch) and np.array_equal(single.y, plain.y)
+
+
 def test_a_job_that_cannot_compile_ends(fresh):
     # two voltage sources in parallel: the netlist builds, its model does not
     bad = fresh("c", "  - {name: V2, type: V, p: in, n: gnd, V: 2 V}")

@@ -480,3 +480,21 @@ def test_an_inert_harmonic_skips_its_sine_on_both_routes_to_the_bit(compile_text
     t, w = inert[1].t, inert[1]["w"]
     assert np.allclose(w, 100.0 * (1.0 - np.exp(-2.0 * t)), rtol=1e-6, atol=1e-5)
     assert np.max(np.abs(live[1]["w"] - w)) > 0.1  # the live harmonic acts
+
+
+def test_the_guarded_functions_are_the_functions_or_zero(tmp_path):
+    """``if_<name>(z, x)``: ``<name>(x)`` to the bit while z is not zero, 0.0 when it is,
+    whatever x (an inert term no longer passes on an overflow)."""
+    import math
+
+    from circuitsim.solve import direct
+    from circuitsim.solve.kernel_lib import GUARDED
+
+    folder = tmp_path / "kernels"
+    folder.mkdir(mode=0o700)
+    lib = direct._kernel_lib(folder)
+    for name in GUARDED:
+        guarded, plain = getattr(lib, f"if_{name}"), getattr(math, name)
+        for x in (-2.5, 0.0, 0.7, 30.0):
+            assert guarded(-1.5, x) == plain(x)
+        assert guarded(0.0, math.inf) == 0.0 and guarded(0.0, math.nan) == 0.0

@@ -21,7 +21,7 @@ import re
 import sys
 from typing import Any
 
-from circuitsim.solve.kernel_lib import BAND_ABS, BAND_REL, KERNEL_LIB
+from circuitsim.solve.kernel_lib import BAND_ABS, BAND_REL, GUARDED, KERNEL_LIB
 
 CODEGEN_VERSION = "28"  # 24-25: the root function (25: with tables); 26: batches with tables;
 # 27: relations' modes numbered in canonical order; 28: an inert term's function skipped
@@ -152,9 +152,6 @@ def _print(e, printer) -> str:
 
 
 _PARAM = re.compile(r"p\d+")
-#: the functions a term may skip (``_term``), by sympy's name; each has a guarded form in the
-#: kernels' shared module (``if_<name>``, solve/kernel_lib.py)
-_GUARDED = ("sin", "cos", "exp", "tanh", "sinh", "cosh", "atan")
 
 
 def _term(a, printer) -> str:
@@ -169,7 +166,7 @@ def _term(a, printer) -> str:
     if form is None or not a.is_Mul:
         return _print(a, printer)
     zeros = [f.name for f in a.args if f.is_Symbol and _PARAM.fullmatch(f.name)]
-    skip = [f.func.__name__ in _GUARDED and len(f.args) == 1 for f in a.args]
+    skip = [f.func.__name__ in GUARDED and len(f.args) == 1 for f in a.args]
     if not zeros or not any(skip):
         return _print(a, printer)
     z = "*".join(zeros)

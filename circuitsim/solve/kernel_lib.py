@@ -148,28 +148,24 @@ def tab_slope(u, h, i, x):
     return u[off + 2 * m + k] if 0 <= k < m - 1 else 0.0
 
 
-def _guarded(fn):
-    """``fn(x)`` unless the factor ``z`` multiplying it is zero (then 0.0): the kernels'
-    form of a term that an inert patch holds at zero (compiler/codegen.py, ``_term``). A
-    call, not an inline conditional: numba's compile time grows with the branches of one
-    function far faster than with its calls."""
-    @njit(cache=True, error_model="numpy")
-    def guarded(z, x):
-        return fn(x) if z != 0.0 else 0.0
-    return guarded
-
-
-if_sin, if_cos, if_exp = _guarded(math.sin), _guarded(math.cos), _guarded(math.exp)
-if_tanh, if_sinh, if_cosh = _guarded(math.tanh), _guarded(math.sinh), _guarded(math.cosh)
-if_atan = _guarded(math.atan)
-
-
 RES = types.int32(types.float64, types.voidptr, types.voidptr, types.voidptr, types.voidptr)
 #: IDA's root function: g(t, yy, yp, gout, user_data), the guards into gout
 ROOT = types.int32(types.float64, types.voidptr, types.voidptr, types.voidptr, types.voidptr)
 JAC = types.int32(types.float64, types.float64, types.voidptr, types.voidptr, types.voidptr,
                   types.voidptr, types.voidptr, types.voidptr, types.voidptr, types.voidptr)
 '''
+
+#: the functions a term of the kernels skips while the parameters multiplying it are zero
+#: (``compiler/codegen.py``, ``_term``), each as ``if_<name>(z, x)``: ``<name>(x)`` unless the
+#: factor ``z`` is zero, then 0.0. A call, not an inline conditional: numba's compile time
+#: grows with the branches of one function far faster than with its calls.
+GUARDED = ("sin", "cos", "exp", "tanh", "sinh", "cosh", "atan")
+SOURCE += "".join(f"""
+
+@njit(cache=True, error_model="numpy")
+def if_{name}(z, x):
+    return math.{name}(x) if z != 0.0 else 0.0
+""" for name in GUARDED)
 
 #: IDA's return flag for a root (SUNDIALS IDA_ROOT_RETURN; the output loop above stops at it)
 ROOT_RETURN = 2
