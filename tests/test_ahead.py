@@ -114,13 +114,18 @@ def test_a_claim_takes_a_queued_topology_back(fresh):
     assert ahead._key(third) not in worker.done
 
 
-def test_a_lent_jacobian_is_compiled_by_the_worker_and_loaded_here(fresh, monkeypatch):
-    # another topology, of other code: the worker holds no kernels of the lent one's
-    other, raw = fresh("m1", "  - {name: R2, type: R, p: out, n: gnd, R: 1 Mohm}"), fresh("m2")
-    ahead.expect([other])  # the worker is up
+def _lender(fresh, tag: str):
+    """A worker that is up, having compiled another topology of other code (it holds no
+    kernels of the lender's), and the lender: topology ``tag``'s model and kernel module."""
+    other = fresh(f"{tag}1", "  - {name: R2, type: R, p: out, n: gnd, R: 1 Mohm}")
+    ahead.expect([other])
     assert _wait_done(other)
-    model = _compiled(raw)
-    module = direct.kernels(model)
+    model = _compiled(fresh(f"{tag}2"))
+    return model, direct.kernels(model)
+
+
+def test_a_lent_jacobian_is_compiled_by_the_worker_and_loaded_here(fresh, monkeypatch):
+    model, module = _lender(fresh, "m")
     direct._compile_shared(module, model, ("residual", "jacobian"))
     worker = ahead._WORKER[0]
     # compiled there, not here
@@ -138,11 +143,7 @@ def test_a_batch_lends_the_single_kernels_for_later(fresh, monkeypatch):
     member's kernels; a single run later claims them and loads them from the cache."""
     from circuitsim.solve.batch import simulate_batch
 
-    other, raw = fresh("b1", "  - {name: R2, type: R, p: out, n: gnd, R: 1 Mohm}"), fresh("b2")
-    ahead.expect([other])  # the worker is up
-    assert _wait_done(other)
-    model = _compiled(raw)
-    module = direct.kernels(model)
+    model, module = _lender(fresh, "b")
     direct._compile_shared(module, model, ("residual_batch", "jacobian_band"))
     name = direct.kernel_name(model.meta["kernels"])
     singles = f"kernels {name} " + " ".join(n for n in direct._SINGLES if n in module.CFUNCS)
