@@ -190,18 +190,24 @@ def explained_and_left(setup: Setup, before: ModelState, after: ModelState
     """What the model ``after`` explains of ``before``'s misfit, and the structure it leaves
     (steady lines or a transient, whichever holds more), both in units of each probe's
     whitened noise variance and measured as ``judge`` measures a trial."""
-    whiten = whiteners_of(after.fit.residuals, setup.probes)
-    old, new = before.whitened(setup, whiten), after.whitened(setup, whiten)
+    whiten, old, new = _whitened_both(setup, before, after)
     gain, left, _ = _in_noise_units(setup, whiten, old, new, after.fit.residuals)
     return gain, left
+
+
+def _whitened_both(setup: Setup, before: ModelState, after: ModelState
+                   ) -> tuple[Mapping[str, Any], dict[str, float], dict[str, float]]:
+    """The whitening filters learnt on ``after``'s residual (as ``judge`` learns them) and
+    both models' per-probe whitened sums of squares through them."""
+    whiten = whiteners_of(after.fit.residuals, setup.probes)
+    return whiten, before.whitened(setup, whiten), after.whitened(setup, whiten)
 
 
 def probe_rises(setup: Setup, before: ModelState, after: ModelState) -> dict[str, float]:
     """Per probe, how much worse ``after`` fits it than ``before``: the rise of its whitened
     sum of squares in units of its whitened noise variance (negative: it fits better), the
     filter learnt on ``after``'s residual as ``judge`` learns it."""
-    whiten = whiteners_of(after.fit.residuals, setup.probes)
-    old, new = before.whitened(setup, whiten), after.whitened(setup, whiten)
+    _, old, new = _whitened_both(setup, before, after)
     out = {}
     for p in setup.probes:
         var = max(new[p] / max(np.asarray(after.fit.residuals[p]).size, 1), 1e-300)
