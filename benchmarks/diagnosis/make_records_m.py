@@ -54,6 +54,8 @@ DROPS = (3, 8)
 DECLARED = [{"effect": "emf-harmonic", "target": "M", "order": 14}]
 #: the sensor effects an imprint is compared with (kind, size) [1, probe unit]
 SENSORS = (("gain", 1.001), ("offset", 1e-3))
+#: the two shafts an effect can sit on (either side of the jaw coupling)
+SHAFTS = ("rotor", "fan")
 P = sm.MOTOR_M
 Part = tuple[dict, dict]
 
@@ -195,8 +197,8 @@ def spec(rid: str, cls: str, regime: str, uneven: bool, parts: Sequence[Part] = 
     """One record's specification."""
     fx, effects = combine(parts)
     return {"id": rid, "class": cls, "regime": regime, "uneven": uneven, "fx": fx,
-            "effects": effects, "noise": noise, "note": note, "marginal": marginal,
-            "size": size}
+            "effects": effects, "parts": tuple(parts), "noise": noise, "note": note,
+            "marginal": marginal, "size": size}
 
 
 def null_and_catalog() -> list[dict[str, Any]]:
@@ -431,6 +433,42 @@ def separation(s: dict[str, Any], clean: dict, same: set) -> dict[str, float]:
     return imprints(s).separation(s["regime"], clean, alternatives(s), same)
 
 
+def moved(frag: dict, target: str, other: str) -> list[dict]:
+    """The columns' fx of one effect ``frag`` moved from shaft ``target`` to ``other`` at
+    its own size: one for a scalar effect; two for an angle-locked one (its amplitude as a
+    sine and as a cosine, so that the phase is fitted). The same size, not the catalog's
+    small steps (SCALAR_EFFECTS): near the slow regime's stops, where the friction sticks, an
+    imprint does not scale with its effect's size (a 1e-6 N m s/rad friction's, times 20,
+    misses a 2e-5 one's by four times its norm, between 5.6 and 6.3 s), so a small step
+    leaves 105 of u07's 115 sigma where the same friction at its own size leaves 0.02."""
+    (kind, where), = frag.items()
+    value = where[target]
+    if kind != "cog":
+        return [{kind: {other: value}}]
+    return [{kind: {other: [(k, math.hypot(a, b) * c, math.hypot(a, b) * d)
+                            for k, a, b in value]}} for c, d in ((1.0, 0.0), (0.0, 1.0))]
+
+
+def location(s: dict[str, Any]) -> list[dict[str, Any]]:
+    """For each truth effect on a shaft (rotor or fan), the distance [white sigma] of its own
+    clean imprint, run alone on the record's times and regime (so a two-effect record's other
+    effect does not count), from the same effect at the same size on the other shaft,
+    best-scaled; and that imprint's norm [white sigma]. ``separation_sigma`` never compares
+    the same effect across the coupling."""
+    regime, t, imp = s["regime"], times(s), imprints(s)
+    out = []
+    for frag, e in s["parts"]:
+        if e["target"] not in SHAFTS:
+            continue
+        other = next(x for x in SHAFTS if x != e["target"])
+        cols = np.column_stack([imp.imprint(regime, sim(regime, t, fx))
+                                for fx in moved(frag, e["target"], other)])
+        y = imp.imprint(regime, sim(regime, t, frag))
+        out.append({"effect": e["effect"], "target": e["target"], "other": other,
+                    "sigma": recordkit.left(y, cols), "imprint_sigma": float(np.linalg.norm(y))})
+    return out
+
+
 def scale_marginal(s: dict[str, Any]) -> None:
     """Scale a marginal record's size so that its best probe's signature is MARGINAL_SIGMA
     on its own times (its effect is about linear in its size; two passes)."""
@@ -439,7 +477,8 @@ def scale_marginal(s: dict[str, Any]) -> None:
         clean = sim(s["regime"], times(s), s["fx"])
         best = max(imprints(s).signature(s["regime"], clean).values())
         size = float(f"{size * MARGINAL_SIGMA / best:.4g}")
-        s["fx"], s["effects"] = combine(s["marginal"](size))
+        s["parts"] = tuple(s["marginal"](size))
+        s["fx"], s["effects"] = combine(s["parts"])
     s["size"] = size
 
 
@@ -475,6 +514,8 @@ def make(s: dict[str, Any], write: bool) -> dict:
         e = s["effects"][0]
         same = {e["effect"], *(a["effect"] for a in e.get("also_accept", []))}
         entry["separation_sigma"] = separation(s, clean, same)
+    if s["class"] in ("catalog", "two"):
+        entry["location_sigma"] = location(s)
     if write:
         rng = np.random.default_rng(s["seed"])
         ns = recordkit.noise_or_white(s, WHITE)

@@ -49,7 +49,8 @@ SPLITS = ("tune", "heldout", "fresh", "fresh2", "fresh3", "fresh4", "fresh5", "f
           "fresh7", "fresh8", "fresh9", "fresh10", "fresh11", "fresh12")
 VERDICTS = ("right", "tie", "nothing", "nothing+structure", "partial", "wrong", "failed")
 #: [sigma] a marginal truth this close to another catalog effect's imprint (truth.json's
-#: separation_sigma, computed on the scipy models) cannot be told from it by any test
+#: separation_sigma, computed on the scipy models), or an effect this close to itself on the
+#: other side of a coupling (location_sigma), cannot be told from it by any test
 TIE_SIGMA = 2.0
 
 
@@ -218,17 +219,30 @@ def _param_errors(acc: dict, expected: dict, final: dict | None = None) -> dict[
 
 
 def _tie(entry: dict, res: dict, extra: list[dict], matches: list) -> bool:
-    """A marginal truth the record cannot tell from the one effect accepted instead: the
-    truth is within TIE_SIGMA of it on the scipy models, and the report names the two as
-    indistinct. Counted apart from "right" (it is not a hit), and not as "wrong"."""
+    """A truth the record cannot tell from what the report accepted instead, the report
+    naming the two as indistinct: either a marginal truth within TIE_SIGMA of the one other
+    effect accepted (its kind: ``separation_sigma``), or each truth effect missed accepted
+    on the other side of a coupling, within TIE_SIGMA of its own place (``location_sigma``);
+    both computed on the scipy models. Counted apart from "right" (it is not a hit), and not
+    as "wrong"."""
+    def named(a: str, b: str) -> bool:
+        return any(a in text and b in text for text in res.get("indistinct") or [])
+
     sep = entry.get("separation_sigma") or {}
-    if matches or len(extra) != 1 or len(entry["effects"]) != 1:
+    if not matches and len(extra) == 1 and len(entry["effects"]) == 1:
+        got, truth = extra[0], entry["effects"][0]
+        if sep.get(got["effect"], math.inf) < TIE_SIGMA and named(
+                f"{got['effect']}:{got['target']}", f"{truth['effect']}:{truth['target']}"):
+            return True
+    near = {(x["effect"], x["target"], x["other"]) for x in entry.get("location_sigma", [])
+            if x["sigma"] < TIE_SIGMA}
+    found = {m["truth"] for m in matches}
+    missed = [e for e in entry["effects"] if e["effect"] not in found]
+    if not missed or len(missed) != len(extra):
         return False
-    got, truth = extra[0], entry["effects"][0]
-    if sep.get(got["effect"], math.inf) >= TIE_SIGMA:
-        return False
-    pair = (f"{got['effect']}:{got['target']}", f"{truth['effect']}:{truth['target']}")
-    return any(all(k in text for k in pair) for text in res.get("indistinct") or [])
+    return all(any(a["effect"] == e["effect"] and (e["effect"], e["target"], a["target"]) in near
+                   and named(f"{e['effect']}:{a['target']}", f"{e['effect']}:{e['target']}")
+                   for a in extra) for e in missed)
 
 
 def score(entry: dict, res: dict | None) -> dict:
@@ -383,7 +397,7 @@ def report(entries: list[dict], title: str) -> tuple[int, int]:
             print(f"  {k:28s} found {d['found']}, missed {d['missed']}")
     ties = [e["id"] for e, _, sc in rows if sc and sc["verdict"] == "tie"]
     print(f"{title}: {n_right} right of {n_done} run ({len(entries) - n_done} not run)"
-          + (f"; ties (a marginal truth within {TIE_SIGMA:g} sigma of the effect named, the "
+          + (f"; ties (a truth within {TIE_SIGMA:g} sigma of the effect or place named, the "
              f"report saying it cannot tell them apart): {', '.join(ties)}" if ties else ""))
     return n_right, n_done
 
