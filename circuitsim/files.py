@@ -17,6 +17,7 @@ import re
 import shutil
 import stat
 import tempfile
+import warnings
 from collections.abc import Callable, Iterable
 from pathlib import Path
 
@@ -79,6 +80,9 @@ def check_output(path: str | os.PathLike, inputs: Iterable[str | os.PathLike] = 
 
 #: What a plot may be written as, chosen by its file's extension
 PLOT_FORMATS = ("png", "svg", "pdf")
+#: [any unit] the largest size a data file's value may have: a sum of squares of a million
+#: such values still fits a double (1.8e308); no reading in SI units comes near it
+HUGE = 1e150
 
 
 def plot_format(path: str | os.PathLike) -> str:
@@ -253,12 +257,13 @@ def read_body(path: str | os.PathLike, header: list[str], error: RowError,
     ``error`` as :func:`numeric_rows` does."""
     p = os.fspath(path)
     try:
-        with open(p, encoding="utf-8", newline="") as fh:
+        with open(p, encoding="utf-8", newline="") as fh, warnings.catch_warnings():
+            warnings.simplefilter("ignore", UserWarning)  # no rows: the caller says so
             _skip_header(fh)
             arr = np.loadtxt(fh, delimiter=",", dtype=float, ndmin=2, comments=None)
         if arr.size == 0:
             return np.empty((0, len(header)))
-        if arr.shape[1] == len(header) and np.all(np.isfinite(arr)):
+        if arr.shape[1] == len(header) and np.all(np.abs(arr) <= HUGE):
             return arr
     except (ValueError, UnicodeDecodeError):
         pass
@@ -296,7 +301,7 @@ def numeric_rows(path: str | os.PathLike, header: list[str], rows: list[list[str
     try:
         # the fast path; on any doubt the row-by-row scan finds the offending cell
         arr = np.array([[float(c) for c in r] for r in rows], dtype=float)
-        if arr.shape != (len(rows), len(header)) or not np.all(np.isfinite(arr)):
+        if arr.shape != (len(rows), len(header)) or not np.all(np.abs(arr) <= HUGE):
             raise ValueError
         return arr.reshape(len(rows), len(header))
     except ValueError:
@@ -328,5 +333,10 @@ def _scan_rows(path: str, header: list[str], rows: list[list[str]],
                 what = "missing or NaN" if math.isnan(v) else "infinite: a saturated reading?"
                 raise error(f"row {line}, column '{header[j]}' is {s} ({what}). "
                             f"Remove the row, or interpolate the missing sample", line)
+            if abs(v) > HUGE:
+                shown = f"{v:.3g}" if echo else "a value"
+                raise error(f"row {line}, column '{header[j]}' is {shown}, beyond {HUGE:g} in "
+                            f"size: its square overflows double precision (a corrupt value, "
+                            f"or a wrong unit?). Remove the row or correct it", line)
             out[i, j] = v
     return out

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import textwrap
+import warnings
 from typing import ClassVar
 
 import numpy as np
@@ -90,10 +91,15 @@ def _error(call) -> str:
      ["starts at -0.001 s", "shift the time axis"]),
     ("time,speed,i_total\n" + _rows(5) + _rows(4), "rec.csv:7",
      ["time does not increase at row 7", "0 s after 0.004 s in row 6", "Sort the rows"]),
+    ("time,speed,i_total\n" + _rows(4) + "0.004,1e300,2\n" + _rows(5),
+     "rec.csv:6", ["row 6, column 'speed' is 1e+300", "square overflows", "correct it"]),
+    ("time,speed,i_total\n", "rec.csv:1", ["0 data rows", "at least 8"]),
 ])
 def test_record_errors_name_file_row_column_and_fix(tmp_path, text, where, words):
     p = _csv(tmp_path, text)
-    msg = _error(lambda: load_record(p, PROBES))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # the error alone: no library's warning before it
+        msg = _error(lambda: load_record(p, PROBES))
     assert where in msg, msg
     for w in words:
         assert w in msg, (w, msg)

@@ -11,6 +11,7 @@ from __future__ import annotations
 import csv
 import json
 import os
+import re
 import signal
 import stat
 import subprocess
@@ -334,6 +335,26 @@ def test_diagnose_probe_naming_no_column_exits_2(rc_copy, tmp_path, capsys):
     err = capsys.readouterr().err
     assert "no such column" in err and "v_out" in err and "Traceback" not in err
 
+
+
+def test_diagnose_a_flat_column_exits_2_and_fit_reports_no_nrmse(rc_copy, tmp_path, capsys):
+    """A column holding one value in every row (a disconnected sensor) has no noise to weigh
+    it by: diagnose refuses it, naming it, instead of dividing by zero ("error inf"); fit
+    fits it and reports its NRMSE (normalised by a spread of zero) as flat, not 1e300."""
+    rec = tmp_path / "rec.csv"
+    assert main(["run", str(rc_copy), "--out", str(rec), "--plot", str(tmp_path / "r.png"),
+                 "--probe", "v_out"]) == 0
+    lines = rec.read_text().splitlines()
+    head, rows = lines[0], [ln.split(",") for ln in lines[1:]]
+    rec.write_text("\n".join([head, *(f"{r[0]},0" for r in rows)]) + "\n")
+    capsys.readouterr()
+    assert main(["diagnose", str(rc_copy), str(rec), "--quiet"]) == 2
+    err = capsys.readouterr().err
+    assert "column 'v_out'" in err and "same value (0) in every row" in err
+    assert "Traceback" not in err and "Check the sensor" in err
+    assert main(["fit", str(rc_copy), str(rec), "--free", "R", "--quiet"]) == 0
+    out = capsys.readouterr().out
+    assert re.search(r"v_out\s+flat\s", out), out
 
 LONG_RUN = """
 title: long sine

@@ -440,7 +440,7 @@ def moved(frag: dict, target: str, other: str) -> list[dict]:
     small steps (SCALAR_EFFECTS): near the slow regime's stops, where the friction sticks, an
     imprint does not scale with its effect's size (a 1e-6 N m s/rad friction's, times 20,
     misses a 2e-5 one's by four times its norm, between 5.6 and 6.3 s), so a small step
-    leaves 105 of u07's 115 sigma where the same friction at its own size leaves 0.02."""
+    leaves 105 of a 2e-5 friction's 115 sigma on u07's times where the same size leaves 0.02."""
     (kind, where), = frag.items()
     value = where[target]
     if kind != "cog":

@@ -108,8 +108,9 @@ class FitResult:
     kind : 'record' or 'features'.
     residuals : measured - model; per probe on the record's time grid (record), or per
         feature label (features).
-    errors : per probe, NRMSE = RMS(residual) / RMS(measured - its mean) (record); per
-        feature, the residual in sigmas (or relative to the value when no sigma is given).
+    errors : per probe, NRMSE = RMS(residual) / RMS(measured - its mean) (record; NaN for a
+        flat column, which has no spread); per feature, the residual in sigmas (or relative
+        to the value when no sigma is given).
     params : every override of the fitted model (fixed ones and the estimates) [SI]:
         ``model.simulate(params=fit.params)`` reproduces the fit.
     sim : the fitted transient on the record's grid (record), else None.
@@ -145,8 +146,9 @@ class FitResult:
     @property
     def error(self) -> float:
         """Root-mean-square over probes of each probe's NRMSE (record), or over features of
-        the normalised residuals (features)."""
+        the normalised residuals (features); a flat probe's (NaN) left out."""
         v = np.array(list(self.errors.values()), float)
+        v = v[np.isfinite(v)]
         return float(np.sqrt(np.mean(v**2))) if v.size else 0.0
 
     def as_dict(self) -> dict:
@@ -1087,9 +1089,9 @@ class _RecordProblem:
         unc = _unevaluated(_uncertainty(J, r, self.space, z, groups, False), bad, self.space)
         sim = self.simulate(z)
         residuals = {p: x - sim[p] for p, x in zip(self.names, self.data, strict=True)}
-        errors = {p: float(np.sqrt(np.mean(residuals[p] ** 2)) /
-                           max(float(np.std(x)), 1e-300))
-                  for p, x in zip(self.names, self.data, strict=True)}
+        # a flat column (a locked rotor's speed) has no spread to normalise by: NaN, not 1e300
+        errors = {p: float(np.sqrt(np.mean(residuals[p] ** 2)) / np.std(x)) if np.std(x) > 0
+                  else math.nan for p, x in zip(self.names, self.data, strict=True)}
         return _result(self.model, self.space, z, unc, "record", ok, msg, nfev, stages,
                        residuals=residuals, errors=errors, params=self.overrides(z), sim=sim)
 
@@ -1183,7 +1185,8 @@ def format_result(result: FitResult, title: str = "") -> str:
         lines.append(f"{'probe':<16}{'NRMSE':>10}{'RMS residual':>16}")
         for k, v in result.errors.items():
             rms = float(np.sqrt(np.mean(np.asarray(result.residuals[k]) ** 2)))
-            lines.append(f"{k:<16}{v:>10.4g}{rms:>16.5g}")
+            nrmse = f"{v:>10.4g}" if math.isfinite(v) else f"{'flat':>10}"
+            lines.append(f"{k:<16}{nrmse}{rms:>16.5g}")
     for m in result.warnings:
         lines.append(f"WARNING: {m}")
     return "\n".join(lines)

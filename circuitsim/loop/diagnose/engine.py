@@ -154,15 +154,7 @@ def fit_declared(netlist, record, free, probes, params, rtol, max_effects, progr
         raise DiagnosisError("this netlist has no raw form to patch; load it from a file")
     model = compile_raw(net.raw)
     _expect_grid(net.raw, record.t)
-    names = tuple(probes or [p for p in model.probe_names if p in record.names])
-    if not names:
-        raise DiagnosisError(f"the record {record.path} has no column named like a probe of "
-                             f"the netlist ({', '.join(model.probe_names)})")
-    missing = [p for p in names if p not in record.names or p not in model.probe_names]
-    if missing:
-        raise DiagnosisError(f"probe(s) {', '.join(missing)} are not both a column of the "
-                             f"record ({', '.join(record.names)}) and a probe of the netlist "
-                             f"({', '.join(model.probe_names)})")
+    names = _probes_of(record, model, probes)
     first = Setup(record, names, {p: spread(record[p]) for p in names}, tuple(free), rtol,
                   max_effects, progress)
     fit0 = refit(first, model, list(free), dict(params or {}), {}, staged=True, nfev=100)
@@ -212,6 +204,31 @@ def _expect_revise(setup: Setup, state: ModelState, log: dict[str, Any]) -> None
         _expect_grid(state.raw, setup.record.t, raws[1:])
     else:
         ahead.expect(raws[1:] + _bent_raws(state.raw, state.chosen), replace=True)
+
+
+def _probes_of(record, model, probes: Sequence[str] | None) -> tuple[str, ...]:
+    """The probes diagnosed: ``probes``, or every column of ``record`` named like a probe of
+    ``model``; each must be both, and must vary over the record."""
+    names = tuple(probes or [p for p in model.probe_names if p in record.names])
+    if not names:
+        raise DiagnosisError(f"the record {record.path} has no column named like a probe of "
+                             f"the netlist ({', '.join(model.probe_names)})")
+    missing = [p for p in names if p not in record.names or p not in model.probe_names]
+    if missing:
+        raise DiagnosisError(f"probe(s) {', '.join(missing)} are not both a column of the "
+                             f"record ({', '.join(record.names)}) and a probe of the netlist "
+                             f"({', '.join(model.probe_names)})")
+    for p in names:
+        x = np.asarray(record[p], float)
+        if x.size and np.all(x == x[0]):
+            # no noise to weigh it by: every statistic of the diagnosis divides by one
+            others = [q for q in names if q != p]
+            hint = (f", or leave it out (--probe {','.join(others)})" if others else "")
+            raise DiagnosisError(
+                f"column '{p}' of the record {record.path} holds the same value ({x[0]:g}) in "
+                f"every row: no signal to fit and no noise to weigh it by (a disconnected or "
+                f"saturated sensor?). Check the sensor{hint}")
+    return names
 
 
 def _noise_weight(residual, measured) -> float:
