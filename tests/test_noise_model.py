@@ -139,34 +139,3 @@ def test_noise_alone_on_a_loggers_uneven_times_holds_no_line(tau):
         r = _ou(t, tau, seed) if tau else np.random.default_rng(seed).normal(size=N_LOG)
         w = fit_whitener(r)
         assert lines_of(w.apply(r), t, r, w).freqs.size == 0, seed
-
-
-def test_the_judges_structure_on_a_loggers_uneven_times_is_the_reports():
-    """The acceptance rule's structure (decide._in_noise_units) reads the lines as the
-    report does, on the even grid: a 60 Hz line on a logger's uneven times counts as
-    structure with 40-125 % of what the same line and noise hold on even times (8 records,
-    as in the test above); read as if even it counted a quarter at most."""
-    from types import SimpleNamespace
-
-    from circuitsim.loop.diagnose.decide import _in_noise_units
-    from circuitsim.loop.diagnose.noise import transient_excess, whiteners_of
-
-    def structure(times: np.ndarray, noise: np.ndarray) -> tuple[float, float]:
-        r = {"x": 0.3 * np.sin(2 * np.pi * 60.0 * times + 0.3) + noise}
-        whiten = whiteners_of(r, ["x"])
-        e = whiten["x"].apply(r["x"])
-        sse = {"x": float(e @ e)}
-        setup = SimpleNamespace(probes=["x"], record=SimpleNamespace(t=times))
-        gain, structured, _ = _in_noise_units(setup, whiten, sse, sse, r)
-        var = sse["x"] / e.size
-        report = lines_of(e, times, r["x"], whiten["x"])
-        assert gain == 0.0
-        assert structured == pytest.approx(max(report.structured, transient_excess(e)) / var)
-        return structured, var
-
-    for seed in range(8):
-        t = _logger_times(4 + seed)
-        noise = np.random.default_rng(5 + seed).normal(size=N_LOG)
-        uneven, _ = structure(t, noise)
-        even, _ = structure(np.linspace(0.0, t[-1], N_LOG), noise)
-        assert 0.4 < uneven / even < 1.25, (seed, uneven, even)

@@ -33,8 +33,8 @@ from circuitsim.loop.diagnose.context import (
 from circuitsim.loop.diagnose.describe import shaft_frequencies
 from circuitsim.loop.diagnose.noise import (
     delta_bic,
-    lines_of,
     memory_whiteners,
+    significant_lines,
     transient_excess,
     whitened_sse,
     whiteners_of,
@@ -221,14 +221,13 @@ def _in_noise_units(setup: Setup, whiten, old: Mapping[str, float], new: Mapping
     """Summed over the probes, each in units of its whitened noise variance (the richer
     model's whitened sum ``new`` per sample): the gain ``old - new``, the structure
     ``residuals`` hold (steady lines or a transient, whichever holds more) and, of it, the
-    lines inside the ``orders`` windows (``_own_frequencies``). The lines are read as the
-    report reads them (``lines_of``): on a logger's uneven times, on an even grid, where a
-    line keeps its frequency instead of smearing over the bins as the intervals wander."""
+    lines inside the ``orders`` windows (``_own_frequencies``)."""
+    dt = float(np.mean(np.diff(setup.record.t)))
     gain = structured = own = 0.0
     for p in setup.probes:
         e = whiten[p].apply(residuals[p])
         var = max(new[p] / max(e.size, 1), 1e-300)  # the probe's whitened noise variance
-        lines = lines_of(e, setup.record.t, residuals[p], whiten[p])
+        lines = significant_lines(e, dt)
         gain += (old[p] - new[p]) / var
         structured += max(lines.structured, transient_excess(e)) / var
         own += _line_excess(lines, orders) / var
