@@ -756,10 +756,8 @@ def test_after_an_acceptance_the_worker_is_asked_for_the_swaps_and_the_backward_
 
 def _timing_of(r: np.ndarray) -> dict:
     from circuitsim.loop.diagnose.describe import _timing
-    from circuitsim.loop.diagnose.noise import fit_whitener
 
-    t = np.arange(r.size) / 25e3
-    return _timing(t, r, fit_whitener(r).apply(r))
+    return _timing(np.arange(r.size) / 25e3, r, 1.0)
 
 
 def test_a_start_up_bump_is_a_transient_a_ripple_everywhere_is_steady():
@@ -768,8 +766,9 @@ def test_a_start_up_bump_is_a_transient_a_ripple_everywhere_is_steady():
     the others', which the rule on the rms (twice the median) calls steady -- is a transient
     strongest there; a 60 Hz ripple over the whole record with the noise's power, and one
     whose amplitude grows with the time as a run-up's speed, are steady; noise alone is
-    steady with no window named; a step that stays (an event and what follows it) is a
-    transient on the rms as before."""
+    steady with no window named, and so is a ripple above the noise everywhere with a
+    stronger start; a step that stays (an event and what follows it) is a transient on the
+    rms as before."""
     n = 12500
     t = np.arange(n) / 25e3
     bump = np.where((t >= 0.05) & (t < 0.1), math.sqrt(2.0 * 2.4), 0.0) * np.sin(
@@ -785,5 +784,9 @@ def test_a_start_up_bump_is_a_transient_a_ripple_everywhere_is_steady():
             assert _timing_of(noise + steady)["kind"] == "steady", seed
         quiet = _timing_of(noise)
         assert quiet["kind"] == "steady" and quiet["strongest"] == [], seed
+        # a ripple five times the noise everywhere, twice that in the first window (the
+        # ODrive's cogging under its position loop's start): steady, no quiet window
+        cogging = np.where(t < 0.05, 2.0, 1.0) * math.sqrt(10.0) * np.sin(2 * np.pi * 90 * t)
+        assert _timing_of(noise + cogging)["kind"] == "steady", seed
         step = _timing_of(noise + np.where(t >= 0.3, 5.0, 0.0) * np.sin(2e3 * t))
         assert step["kind"] == "transient" and step["strongest"][0][0] >= 0.3, seed

@@ -57,7 +57,7 @@ def remaining(setup: Setup, state: ModelState) -> dict[str, Any]:
         entry = {"structured_share": share, "white_after_prewhitening": pval > 1e-3,
                  "noise_ar_order": len(whiten[p].a),
                  "lines": _lines(lines, shafts, _Locking(setup.record.t, r, state)),
-                 "timing": _timing(setup.record.t, r, e),
+                 "timing": _timing(setup.record.t, r, setup.weights.get(p, 0.0)),
                  "follows": _follows(setup, state, r, setup.weights.get(p, 0.0))}
         if share >= MIN_SHARE or pval <= 1e-3:
             probes[p] = entry
@@ -192,11 +192,11 @@ def _resolution(lines) -> float:
     return float(np.min(np.diff(np.sort(lines.freqs)))) if lines.freqs.size > 1 else 0.0
 
 
-def _timing(t: np.ndarray, r: np.ndarray, e: np.ndarray) -> dict[str, Any]:
+def _timing(t: np.ndarray, r: np.ndarray, sigma: float) -> dict[str, Any]:
     """Where in the record the residual ``r`` [probe unit] is large: transient when some
     windows' rms is over twice the median window's and one's over three times (an event
-    and what follows it), or when a few windows hold a bump the rms hides (``_bump``);
-    else steady. ``e``: ``r`` prewhitened (its last samples)."""
+    and what follows it), or when a few windows hold a bump over a record otherwise at its
+    noise level ``sigma`` [probe unit] that the rms hides (``_bump``); else steady."""
     edges = np.linspace(0, r.size, WINDOWS + 1).astype(int)
     rms = np.array([math.sqrt(float(np.mean(np.square(r[a:b])))) if b > a else 0.0
                     for a, b in itertools.pairwise(edges)])
@@ -204,30 +204,32 @@ def _timing(t: np.ndarray, r: np.ndarray, e: np.ndarray) -> dict[str, Any]:
     strong = [i for i, v in enumerate(rms) if v > 2 * med]
     if strong and max(rms) > 3 * med:
         kind = "transient"
-    else:
-        strong = _bump(np.clip(edges - (r.size - e.size), 0, e.size), e)
-        kind = "transient" if strong else "steady"
+    else:  # a steady structure still names a window whose rms is twice the median's
+        bump = _bump(rms**2, sigma**2, int(np.min(np.diff(edges))))
+        kind = "transient" if bump else "steady"
+        strong = bump or strong
     return {"kind": kind, "rms_by_window": rms.tolist(),
             "strongest": [[float(t[edges[i]]), float(t[min(edges[i + 1], t.size - 1)])]
                           for i in strong[:3]]}
 
 
-def _bump(cuts: np.ndarray, e: np.ndarray) -> list[int]:
-    """The windows (between ``cuts``) of a bump in the prewhitened residual ``e`` whose rms
-    stays under twice the others' (a rub's pulses as a fan runs up: 3.5 times the noise
-    power in one window, an rms 1.9 times): the at most three that hold two thirds of the
-    power above the quietest windows' (the mean of the lowest three: the noise), each
-    beyond four of that power's chi-square standard deviations and the first at least twice
-    the noise power. None when the excess spreads wider (a ripple everywhere, one growing
-    with the speed) or stays within the noise's own spread."""
-    power = np.array([float(np.mean(np.square(e[a:b]))) if b > a else 0.0
-                      for a, b in itertools.pairwise(cuts)])
+def _bump(power: np.ndarray, noise: float, m: int) -> list[int]:
+    """The windows of a bump that the rms hides (a rub's pulses as a fan runs up: 3.4 times
+    the noise power in one window, an rms 1.8 times the others'), from each window's mean
+    square ``power`` [unit^2] of ``m`` samples or more: the quietest three (their mean) must
+    be at the white ``noise`` level [unit^2] (twice it at most: a steady structure fills
+    them too, and a cogging everywhere is no bump); then the at most three windows that hold
+    three quarters of the power above them, each beyond four of its chi-square standard
+    deviations, the first at least twice it. None when the excess spreads wider (a ripple
+    whose amplitude grows in proportion to the time: 69 % in the last three of ten windows)
+    or stays within the noise's own spread."""
     floor = float(np.mean(np.sort(power)[:3]))
-    m = max(int(np.min(np.diff(cuts))), 1)
+    if not 0.0 < floor <= 2.0 * noise:
+        return []
     excess = np.clip(power - floor, 0.0, None)
     top = [int(i) for i in np.argsort(-excess, kind="stable")[:3]
-           if power[i] > floor * (1.0 + 4.0 * math.sqrt(2.0 / m))]
-    if not top or excess[top[0]] < floor or excess[top].sum() < 2.0 / 3.0 * excess.sum():
+           if power[i] > floor * (1.0 + 4.0 * math.sqrt(2.0 / max(m, 1)))]
+    if not top or excess[top[0]] < floor or excess[top].sum() < 0.75 * excess.sum():
         return []
     return top
 
