@@ -146,8 +146,10 @@ class FitResult:
     @property
     def error(self) -> float:
         """Root-mean-square over probes of each probe's NRMSE (record), or over features of
-        the normalised residuals (features); a flat probe's (NaN) left out."""
+        the normalised residuals (features); a flat probe's (NaN) left out, NaN if all are."""
         v = np.array(list(self.errors.values()), float)
+        if v.size and not np.any(np.isfinite(v)):
+            return math.nan
         v = v[np.isfinite(v)]
         return float(np.sqrt(np.mean(v**2))) if v.size else 0.0
 
