@@ -10,6 +10,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from circuitsim.files import atomic_write
+from circuitsim.loop.diagnose.describe import lines_text
 from circuitsim.loop.diagnose.result import Accepted, Diagnosis
 
 
@@ -168,9 +169,7 @@ def _remaining(diag: Diagnosis) -> str:
         return f"<h2>What remains</h2><p>{html.escape(str(rest.get('note', '')))}</p>"
     rows = []
     for p, e in probes.items():
-        lines = "; ".join(
-            (f"order {ln['order']['order']:g} of {ln['order']['shaft']}" if "order" in ln
-             else f"{ln['frequency']:.4g} Hz") + f" ({ln['share']:.0%})" for ln in e["lines"])
+        lines = lines_text(e) or "-"
         when = ", ".join(f"{a:.3g}-{b:.3g} s" for a, b in e["timing"]["strongest"])
         grows = ", ".join(f"{f['signal']} ({f['rank_correlation']:.2f})"
                           for f in e.get("follows") or []) or "-"

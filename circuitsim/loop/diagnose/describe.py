@@ -37,6 +37,14 @@ MIN_SHARE = 0.02  # structure below this share of a probe's whitened residual is
 #: chance correlation this high has odds of about 1e-5 per signal).
 FOLLOW_WINDOWS = 20
 FOLLOW_RHO = 0.8
+#: A structure has no dominant line when its strongest holds less than the first share and
+#: its three strongest less than the second: it is then described by the band its significant
+#: bins span (a resonance's skirt, a transient's spectrum), not by bins that name nothing.
+SPREAD_TOP = 0.25
+SPREAD_TOP3 = 0.5
+#: The band of a spread structure: the frequencies where its cumulative excess reaches these
+#: fractions (its middle half: a resonance's skirt reaches far, its middle half does not).
+SPREAD_BAND = (0.25, 0.75)
 
 
 def remaining(setup: Setup, state: ModelState) -> dict[str, Any]:
@@ -59,6 +67,9 @@ def remaining(setup: Setup, state: ModelState) -> dict[str, Any]:
                  "lines": _lines(lines, shafts, _Locking(setup.record.t, r, state)),
                  "timing": _timing(setup.record.t, r, setup.weights.get(p, 0.0)),
                  "follows": _follows(setup, state, r, setup.weights.get(p, 0.0))}
+        spread = _spread(lines, entry["lines"])
+        if spread is not None:
+            entry["spread"] = spread
         if share >= MIN_SHARE or pval <= 1e-3:
             probes[p] = entry
     structure = bool(probes)
@@ -188,6 +199,47 @@ class _Locking:
         return "time" if compared and not angle_won else ""
 
 
+def _spread(lines, named: list[dict[str, Any]]) -> dict[str, Any] | None:
+    """The band [Hz] a structure without a dominant line spans, or None when one dominates.
+
+    ``named`` are the probe's reported lines (``_lines``: a swept order already merged into
+    one). A line at 2 Hz holding 13 % of a 0.5 s record's transient is the spectrum's lowest
+    bin, and an input filter's resonance spreads over dozens of bins near 800 Hz: naming three
+    of their bins as lines misleads, the band they span and its peak do not. A structure
+    whose strongest line is a shaft order keeps its lines."""
+    ranked = sorted(named, key=lambda ln: -ln["share"])
+    shares = [ln["share"] for ln in ranked]
+    # a line locked to a shaft's angle is a line whatever its share (a machine's cogging
+    # orders are each a minority of the whole: the ODrive's strongest holds 26 %)
+    if lines.freqs.size < 4 or not shares or "order" in ranked[0] \
+            or shares[0] >= SPREAD_TOP or sum(shares[:3]) >= SPREAD_TOP3:
+        return None
+    order = np.argsort(lines.freqs)
+    f, x = lines.freqs[order], lines.excess[order]
+    cum = np.cumsum(x) / float(np.sum(x))
+    lo, hi = (float(f[min(int(np.searchsorted(cum, q)), f.size - 1)]) for q in SPREAD_BAND)
+    peak = int(np.argmax(x))
+    return {"low": lo, "high": hi, "peak": float(f[peak]), "bins": int(f.size),
+            "top_share": float(shares[0])}
+
+
+def lines_text(e: dict[str, Any]) -> str:
+    """The probe's main lines in words, or the band of a structure with none dominant."""
+    sp = e.get("spread")
+    if sp is not None:
+        return (f"no dominant line: {sp['bins']} significant bins, half of their excess at "
+                f"{sp['low']:.4g}-{sp['high']:.4g} Hz, peak {sp['peak']:.4g} Hz "
+                f"(the strongest line {sp['top_share']:.0%})")
+    lines = ", ".join(
+        (f"order {ln['order']['order']:g} of {ln['order']['shaft']}" +
+         (" (angle-locked while it changes speed)" if ln["order"].get("locking") else "")
+         if "order" in ln
+         else f"{ln['frequency']:.4g} Hz" + (" (time-locked)" if ln.get("locking", "time")
+                                              else "")) + f" ({ln['share']:.0%})"
+        for ln in e["lines"][:3])
+    return f"lines at {lines}" if lines else ""
+
+
 def _resolution(lines) -> float:
     return float(np.min(np.diff(np.sort(lines.freqs)))) if lines.freqs.size > 1 else 0.0
 
@@ -297,18 +349,12 @@ def _note(probes: dict[str, Any], resolved: list[str] | None = None) -> str:
         return "nothing significant remains: the residual is noise"
     parts = []
     for p, e in probes.items():
-        lines = ", ".join(
-            (f"order {ln['order']['order']:g} of {ln['order']['shaft']}" +
-             (" (angle-locked while it changes speed)" if ln["order"].get("locking") else "")
-             if "order" in ln
-             else f"{ln['frequency']:.4g} Hz" + (" (time-locked)" if ln.get("locking", "time")
-                                                  else "")) + f" ({ln['share']:.0%})"
-            for ln in e["lines"][:3])
+        lines = lines_text(e)
         when = e["timing"]
         span = "; strongest " + ", ".join(f"{a:.3g}-{b:.3g} s" for a, b in when["strongest"]) \
             if when["strongest"] else ""
         parts.append(f"{p}: {e['structured_share']:.0%} of its residual is structure, "
                      f"{when['kind']}{span}" + _follow_text(e) +
-                     (f"; lines at {lines}" if lines else "") +
+                     (f"; {lines}" if lines else "") +
                      ("" if e["white_after_prewhitening"] else "; not white"))
     return "something remains that no catalog effect explains -- " + " | ".join(parts)
