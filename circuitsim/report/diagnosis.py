@@ -145,17 +145,18 @@ def _corrections(diag: Diagnosis) -> str:
             "<tr><th>term</th><th>on</th><th>correction</th></tr>" + rows + "</table>")
 
 
+def _num(v: float | None, fmt: str) -> str:
+    return "n/a" if v is None else format(v, fmt)
+
+
 def _final_fit(diag: Diagnosis) -> str:
     final = diag.final_parameters()
     if not final:
         return ""
 
-    def num(v: float | None, fmt: str) -> str:
-        return "n/a" if v is None else format(v, fmt)
-
     rows = "".join(
-        f"<tr><td>{html.escape(n)}</td><td>{num(v['before'], '.6g')}</td>"
-        f"<td>{num(v['estimate'], '.6g')}</td><td>{num(v['stderr'], '.2g')}</td></tr>"
+        f"<tr><td>{html.escape(n)}</td><td>{_num(v['before'], '.6g')}</td>"
+        f"<td>{_num(v['estimate'], '.6g')}</td><td>{_num(v['stderr'], '.2g')}</td></tr>"
         for n, v in final.items())
     return ("<h2>Final fit (all free parameters together, SI)</h2><table border=\"1\">"
             "<tr><th>parameter</th><th>declared model</th><th>estimate</th><th>stderr</th>"
@@ -171,13 +172,19 @@ def _remaining(diag: Diagnosis) -> str:
     for p, e in probes.items():
         lines = lines_text(e) or "-"
         when = ", ".join(f"{a:.3g}-{b:.3g} s" for a, b in e["timing"]["strongest"])
+        if "onset" in e["timing"]:
+            a, b = e["timing"]["onset"]
+            when += f"{'; ' if when else ''}starts in {a:.3g}-{b:.3g} s, lasts to the end"
         grows = ", ".join(f"{f['signal']} ({f['rank_correlation']:.2f})"
                           for f in e.get("follows") or []) or "-"
-        rows.append(f"<tr><td>{html.escape(p)}</td><td>{e['structured_share']:.1%}</td>"
+        level = e.get("rms_over_noise")
+        rows.append(f"<tr><td>{html.escape(p)}</td><td>{_num(level, '.3g')}</td>"
+                    f"<td>{e['structured_share']:.1%}</td>"
                     f"<td>{html.escape(e['timing']['kind'])}</td><td>{html.escape(when)}</td>"
                     f"<td>{html.escape(grows)}</td><td>{html.escape(lines)}</td></tr>")
     return ("<h2>What remains</h2><p>" + html.escape(str(rest.get("note", ""))) +
-            "</p><table border=\"1\"><tr><th>probe</th><th>structure share</th><th>kind</th>"
+            "</p><table border=\"1\"><tr><th>probe</th><th>rms / white noise</th>"
+            "<th>structure share (prewhitened)</th><th>kind</th>"
             "<th>strongest</th><th>grows with (rank correlation)</th>"
             "<th>lines (share of the structure)</th></tr>" + "".join(rows) +
             "</table>")

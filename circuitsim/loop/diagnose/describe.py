@@ -59,14 +59,18 @@ def remaining(setup: Setup, state: ModelState) -> dict[str, Any]:
             continue
         e = whiten[p].apply(r)
         lines = lines_of(e, setup.record.t, r, whiten[p])
-        structured = max(lines.structured, transient_excess(e))
-        share = structured / lines.total if lines.total > 0 else 0.0
+        # each share on its own grid: the lines' on the even one an uneven record is read on
+        share = max(lines.structured / lines.total if lines.total > 0 else 0.0,
+                    transient_excess(e) / max(float(e @ e), 1e-300))
         _, pval = ljung_box(e)
+        sigma = setup.weights.get(p, 0.0)
         entry = {"structured_share": share, "white_after_prewhitening": pval > 1e-3,
+                 "rms_over_noise": (math.sqrt(float(np.mean(np.square(r)))) / sigma
+                                    if sigma > 0 else math.inf),
                  "noise_ar_order": len(whiten[p].a),
                  "lines": _lines(lines, shafts, _Locking(setup.record.t, r, state)),
-                 "timing": _timing(setup.record.t, r, setup.weights.get(p, 0.0)),
-                 "follows": _follows(setup, state, r, setup.weights.get(p, 0.0))}
+                 "timing": _timing(setup.record.t, r, sigma),
+                 "follows": _follows(setup, state, r, sigma)}
         spread = _spread(lines, entry["lines"])
         if spread is not None:
             entry["spread"] = spread
@@ -260,9 +264,26 @@ def _timing(t: np.ndarray, r: np.ndarray, sigma: float) -> dict[str, Any]:
         bump = _bump(rms**2, sigma**2, int(np.min(np.diff(edges))))
         kind = "transient" if bump else "steady"
         strong = bump or strong
+    span = [[float(t[edges[i]]), float(t[min(edges[i + 1], t.size - 1)])]
+            for i in range(WINDOWS)]
+    onset = _onset(rms**2, sigma**2, int(np.min(np.diff(edges))))
     return {"kind": kind, "rms_by_window": rms.tolist(),
-            "strongest": [[float(t[edges[i]]), float(t[min(edges[i + 1], t.size - 1)])]
-                          for i in strong[:3]]}
+            "strongest": [span[i] for i in strong[:3]],
+            **({"onset": span[onset]} if onset is not None else {})}
+
+
+def _onset(power: np.ndarray, noise: float, m: int) -> int | None:
+    """The window in which a structure starts that then lasts to the end of the record, from
+    each window's mean square ``power`` [unit^2] of ``m`` samples or more: every window
+    before it within four chi-square standard deviations of the white ``noise`` level
+    [unit^2], every one from it on beyond them (a load that lands on a conveyor at 2 s and
+    stays, which the windows' rms, raised over most of the record, calls steady). None for
+    a structure over the whole record, one that ends, or noise alone."""
+    if noise <= 0.0:
+        return None
+    above = power > noise * (1.0 + 4.0 * math.sqrt(2.0 / max(m, 1)))
+    k = int(np.argmax(above)) if above.any() else power.size
+    return k if 0 < k < power.size and bool(above[k:].all()) else None
 
 
 def _bump(power: np.ndarray, noise: float, m: int) -> list[int]:
@@ -353,7 +374,13 @@ def _note(probes: dict[str, Any], resolved: list[str] | None = None) -> str:
         when = e["timing"]
         span = "; strongest " + ", ".join(f"{a:.3g}-{b:.3g} s" for a, b in when["strongest"]) \
             if when["strongest"] else ""
-        parts.append(f"{p}: {e['structured_share']:.0%} of its residual is structure, "
+        if "onset" in when:
+            a, b = when["onset"]
+            span += f"; starts in {a:.3g}-{b:.3g} s and lasts to the end (at its noise before)"
+        level = e.get("rms_over_noise", math.nan)
+        rms = f"rms {level:.3g} times its white noise, " if math.isfinite(level) else ""
+        parts.append(f"{p}: {rms}"
+                     f"{e['structured_share']:.0%} of the prewhitened residual structure, "
                      f"{when['kind']}{span}" + _follow_text(e) +
                      (f"; {lines}" if lines else "") +
                      ("" if e["white_after_prewhitening"] else "; not white"))

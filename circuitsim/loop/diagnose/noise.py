@@ -242,8 +242,8 @@ def lines_of(e: np.ndarray, t: np.ndarray, r: np.ndarray, whitener: Whitener) ->
     vanishes), ``r`` is interpolated onto an even grid of as many samples over the same span,
     whitened there by its own filter (the interpolation colours the noise, which a median
     background would take for lines), and the lines' powers brought back to ``e``'s units
-    by the ratio of the two innovation variances. On even times this is
-    ``significant_lines(e, dt)`` itself."""
+    by the ratio of the two innovation variances, and their total with them. On even times
+    this is ``significant_lines(e, dt)`` itself."""
     from circuitsim.loop.record import even_grid
 
     t = np.asarray(t, float)
@@ -254,7 +254,10 @@ def lines_of(e: np.ndarray, t: np.ndarray, r: np.ndarray, whitener: Whitener) ->
     own = fit_whitener(moved)
     lines = significant_lines(own.apply(moved), float(grid[1] - grid[0]))
     scale = (whitener.sigma / own.sigma) ** 2 if own.sigma > 0.0 else 1.0
-    return Lines(lines.freqs, lines.excess * scale, float(np.asarray(e, float) @ e),
+    # the total on the same grid and scale as the lines, so that their share is one of the
+    # same spectrum (the record grid's own total held less than the even grid's lines
+    # where its whitener followed a transient the even grid's did not: shares over 1)
+    return Lines(lines.freqs, lines.excess * scale, lines.total * scale,
                  lines.structured * scale)
 
 
