@@ -138,24 +138,11 @@ NESTED = ("sensor", "p", "cog", "coul", "visc", "offset")
 
 
 def combine(parts) -> tuple[dict, list]:
-    fx: dict = {}
-    effects = []
-    for frag, eff in parts:
-        for key, val in frag.items():
-            if key in NESTED:
-                merged = dict(fx.get(key, {}))
-                for sub, v in val.items():
-                    if key == "sensor":
-                        merged[sub] = {**merged.get(sub, {}), **v}
-                    elif key == "cog":
-                        merged[sub] = [*merged.get(sub, []), *v]
-                    else:
-                        merged[sub] = v
-                fx[key] = merged
-            else:
-                fx[key] = val
-        effects.append(eff)
-    return fx, effects
+    """The simulator's fx of several effects (this set's nested keys), and their truth
+    entries."""
+    return recordkit.combine(parts, NESTED)
+
+
 
 
 def sim(regime: str, fx: dict) -> dict[str, np.ndarray]:

@@ -135,28 +135,9 @@ def outside(kind: str, fx: dict, params: dict):
                 "parameters": params, "expected": {}}
 
 
-NESTED = ("sensor", "p", "cog", "coul", "visc", "offset", "stribeck")
+combine = recordkit.combine
 
 
-def combine(parts) -> tuple[dict, list]:
-    fx: dict = {}
-    effects = []
-    for frag, eff in parts:
-        for key, val in frag.items():
-            if key in NESTED:
-                merged = dict(fx.get(key, {}))
-                for sub, v in val.items():
-                    if key == "sensor":
-                        merged[sub] = {**merged.get(sub, {}), **v}
-                    elif key == "cog":
-                        merged[sub] = [*merged.get(sub, []), *v]
-                    else:
-                        merged[sub] = v
-                fx[key] = merged
-            else:
-                fx[key] = val
-        effects.append(eff)
-    return fx, effects
 
 
 def sim(regime: str, fx: dict) -> dict[str, np.ndarray]:

@@ -150,29 +150,9 @@ def outside(kind: str, fx: dict, params: dict) -> Part:
                 "parameters": params, "expected": {}}
 
 
-NESTED = ("sensor", "p", "cog", "coul", "visc", "offset", "stribeck")
+combine = recordkit.combine
 
 
-def combine(parts: Sequence[Part]) -> tuple[dict, list]:
-    """The simulator's fx of several effects, and their truth entries."""
-    fx: dict = {}
-    effects = []
-    for frag, eff in parts:
-        for key, val in frag.items():
-            if key not in NESTED:
-                fx[key] = val
-                continue
-            merged = dict(fx.get(key, {}))
-            for sub, v in val.items():
-                if key == "sensor":
-                    merged[sub] = {**merged.get(sub, {}), **v}
-                elif key == "cog":
-                    merged[sub] = [*merged.get(sub, []), *v]
-                else:
-                    merged[sub] = v
-            fx[key] = merged
-        effects.append(eff)
-    return fx, effects
 
 
 def sim(regime: str, t: np.ndarray, fx: dict) -> dict[str, np.ndarray]:
@@ -328,7 +308,7 @@ def times(s: dict[str, Any]) -> np.ndarray:
     fs, dur = sl.REGIMES[s["regime"]]
     if s["regime"] == "fast":
         jitter = round(float(rng.uniform(*JITTER)), 3)
-        t = sl.jittered_times(rng, fs, dur, jitter)
+        t = recordkit.jittered_times(rng, fs, dur, jitter)
         s["timestamps"] = (
             f"jittered: the nominal {fs / 1e3:g} kHz grid k/fs, every sample time but the "
             f"first moved by a uniform random jitter within +-{jitter:.0%} of the "

@@ -1,5 +1,6 @@
 """What the record generators of the later sets share (``make_records_d.py`` ...
-``make_records_k.py``): the noise's text, an effect's imprint on a set's null run
+``make_records_n.py``): the noise's text, the merging of effects' simulator keys
+(``combine``), a jittered acquisition's sample times, an effect's imprint on a set's null run
 (``Imprints``), the writers of a record's CSV and of truth.json, and the command line. Each
 set's simulator and its records stay in its own modules, written independently; nothing here
 imports circuitsim, and nothing is simulated here but by a set's own simulator.
@@ -29,6 +30,52 @@ HERE = Path(__file__).resolve().parent
 RECORDS = HERE / "records"
 TRUTH = HERE / "truth.json"
 LOCK = HERE / ".truth.lock"
+
+
+#: the simulator keys whose values several effects' fragments merge per target (a sensor's
+#: settings per probe, cogging orders appended to a shaft's list, a friction per shaft)
+NESTED = ("sensor", "p", "cog", "coul", "visc", "offset", "stribeck")
+
+
+def combine(parts: Iterable[tuple[dict, dict]], nested: tuple[str, ...] = NESTED
+            ) -> tuple[dict, list]:
+    """The simulator's fx of several effects (each part a fragment of simulator keys and its
+    truth entry), the ``nested`` keys merged per target, and their truth entries."""
+    fx: dict = {}
+    effects = []
+    for frag, eff in parts:
+        for key, val in frag.items():
+            if key not in nested:
+                fx[key] = val
+                continue
+            merged = dict(fx.get(key, {}))
+            for sub, v in val.items():
+                if key == "sensor":
+                    merged[sub] = {**merged.get(sub, {}), **v}
+                elif key == "cog":
+                    merged[sub] = [*merged.get(sub, []), *v]
+                else:
+                    merged[sub] = v
+            fx[key] = merged
+        effects.append(eff)
+    return fx, effects
+
+
+def jittered_times(rng: np.random.Generator, fs: float, duration: float, jitter: float,
+                   step: float = 1e-9) -> np.ndarray:
+    """A fast acquisition's times [s]: the grid k/fs [Hz], each time but the first moved by
+    a uniform random jitter within +-``jitter`` [1] of the interval (the last one only
+    earlier), rounded to ``step`` [s]. Monotonic for ``jitter`` < 0.5. Sampling, not
+    physics: each set's simulator is run at these times."""
+    n = round(fs * duration) + 1
+    dt = 1.0 / fs
+    move = rng.uniform(-jitter, jitter, n) * dt
+    move[0] = 0.0
+    move[-1] = -abs(move[-1])
+    t = np.round((np.arange(n) * dt + move) / step) * step
+    if np.any(np.diff(t) <= 0.0):
+        raise ValueError("jittered times are not increasing")
+    return t
 
 
 def noise_text(ns: Mapping[str, Mapping[str, Any]]) -> str:

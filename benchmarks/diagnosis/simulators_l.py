@@ -103,28 +103,12 @@ def breakpoints(regime: str) -> np.ndarray:
 
 def grid(regime: str) -> np.ndarray:
     """The regime's nominal, evenly spaced sample times [s] (for checks only: the records
-    are sampled unevenly, see ``jittered_times`` and ``logger_times``)."""
+    are sampled unevenly, see ``recordkit.jittered_times`` and ``logger_times``)."""
     fs, dur = REGIMES[regime]
     return np.arange(round(fs * dur) + 1) / fs
 
 
 # ---------------------------------------------------------------------- sample times
-
-def jittered_times(rng: np.random.Generator, fs: float, duration: float, jitter: float,
-                   step: float = 1e-9) -> np.ndarray:
-    """A fast acquisition's times [s]: the nominal grid k/fs, each interior time moved by a
-    uniform random jitter within +-``jitter`` of the interval (the last one only earlier),
-    rounded to ``step`` [s]. Monotonic for ``jitter`` < 0.5."""
-    n = round(fs * duration) + 1
-    dt = 1.0 / fs
-    move = rng.uniform(-jitter, jitter, n) * dt
-    move[0] = 0.0
-    move[-1] = -abs(move[-1])
-    t = np.round((np.arange(n) * dt + move) / step) * step
-    if np.any(np.diff(t) <= 0.0):
-        raise ValueError("jittered times are not increasing")
-    return t
-
 
 def logger_times(rng: np.random.Generator, fs: float, duration: float, drops: int,
                  lo: float = 0.6, hi: float = 2.6, step: float = 1e-6

@@ -109,22 +109,6 @@ def grid(regime: str) -> np.ndarray:
 
 # ---------------------------------------------------------------------- sample times
 
-def jittered_times(rng: np.random.Generator, fs: float, duration: float, jitter: float,
-                   step: float = 1e-9) -> np.ndarray:
-    """A fast acquisition's times [s]: the grid k/fs [Hz], each time but the first moved by
-    a uniform random jitter within +-``jitter`` [1] of the interval (the last one only
-    earlier), rounded to ``step`` [s]. Monotonic for ``jitter`` < 0.5."""
-    n = round(fs * duration) + 1
-    dt = 1.0 / fs
-    move = rng.uniform(-jitter, jitter, n) * dt
-    move[0] = 0.0
-    move[-1] = -abs(move[-1])
-    t = np.round((np.arange(n) * dt + move) / step) * step
-    if np.any(np.diff(t) <= 0.0):
-        raise ValueError("jittered times are not increasing")
-    return t
-
-
 def logger_times(rng: np.random.Generator, fs: float, duration: float, drops: int,
                  lo: float = 0.5, hi: float = 2.0, step: float = 1e-6
                  ) -> tuple[np.ndarray, np.ndarray]:

@@ -112,21 +112,6 @@ def grid(regime: str) -> np.ndarray:
 
 # ---------------------------------------------------------------------- sample times
 
-def jittered_times(rng: np.random.Generator, fs: float, duration: float, jitter: float,
-                   step: float = 1e-9) -> np.ndarray:
-    """An acquisition's times [s]: the grid k/fs [Hz] with every time but the first moved by
-    a uniform random amount within +-``jitter`` [1] of the interval (the last only earlier),
-    rounded to ``step`` [s]; increasing for ``jitter`` < 0.5."""
-    n = round(fs * duration) + 1
-    shift = rng.uniform(-jitter, jitter, n) / fs
-    shift[0] = 0.0
-    shift[-1] = -abs(shift[-1])
-    t = np.round((np.arange(n) / fs + shift) / step) * step
-    if np.any(np.diff(t) <= 0.0):
-        raise ValueError("jittered times are not increasing")
-    return t
-
-
 def logger_times(rng: np.random.Generator, fs: float, duration: float, drops: int,
                  step: float = 1e-6) -> tuple[np.ndarray, np.ndarray]:
     """A logger's times [s] and the times it dropped [s]: intervals of 0.4 + 0.6 Gamma(3,
