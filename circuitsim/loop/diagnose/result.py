@@ -87,7 +87,7 @@ class Diagnosis:
             head = "; ".join(f"{a.effect} on {a.target} " +
                              ", ".join(f"{k} = {v:.4g}" for k, v in a.parameters.items()) +
                              (f" [{a.evidence['interpolation']}]"
-                              if a.evidence.get("interpolation") else "")
+                              if a.evidence.get("interpolation") else "") + _caveat(a)
                              for a in self.effects)
         elif structure:
             head = "something remains that I cannot name: no effect of the catalog explains it"
@@ -104,6 +104,12 @@ class Diagnosis:
             tail = "; " + "; ".join(self.indistinct) + tail
         return (f"{head}{fixes} (error {self.error_before:.4g} -> {self.error_after:.4g})"
                 f"{tail}")
+
+
+def _caveat(a: Accepted) -> str:
+    """An accepted effect's law test when its bend is significant but no verdict."""
+    law = (a.evidence.get("stability") or {}).get("law") or {}
+    return f" ({law['caveat']})" if law.get("caveat") else ""
 
 
 def _clean(obj: Any) -> Any:
