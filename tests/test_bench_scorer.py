@@ -53,3 +53,14 @@ def test_a_place_the_data_tells_apart_or_a_report_silent_on_it_is_a_miss(run, si
     """Beyond TIE_SIGMA the record can tell the two places apart (an unbalance on a blower,
     18 sigma from the rotor's); below it the report must still say it cannot."""
     assert run.score(_entry(sigma), _report(said))["verdict"] == "partial"
+
+
+@pytest.mark.parametrize("structure", [False, True])
+def test_a_null_record_is_right_only_when_the_report_says_nothing_remains(run, structure):
+    """A null record with nothing accepted is right when the report says nothing remains,
+    and a miss when it says something remains that it cannot name (a false alarm in words:
+    the nine slow null records with 1/f speed noise said so before the coherence rule)."""
+    entry = {"id": "n", "class": "null", "declared_terms": [], "effects": []}
+    report = {"status": "ok", "effects": [], "corrections": [], "indistinct": [],
+              "remaining": {"structure": structure}}
+    assert run.score(entry, report)["right"] is (not structure)

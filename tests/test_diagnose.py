@@ -895,3 +895,26 @@ def test_a_law_that_bends_significantly_but_no_verdict_is_said_to():
     assert verdict.bent and "caveat" not in verdict.as_dict()
     assert not noise.bent and "caveat" not in noise.as_dict()
     assert _caveat(Accepted("sensor-delay", "current", {}, {}, 0.0, {})) == ""
+
+
+def test_a_slow_noise_no_other_probe_follows_is_not_structure_a_load_both_see_is():
+    """describe._coherence_chance on 8 s at 400 Hz, 4 seeds: a speed residual of white noise
+    plus a slow random wander (a 1/f-like sensor noise, integrated white noise through a
+    0.2 Hz corner) beside a white current residual -- independent noises -- has a
+    coherence any noise could show (chance over FOLLOW_P); a slow load the model lacks (a
+    1.2 Hz square pitch load twice the white noise's rms, as fresh13's v12 leaves 2.2-2.7
+    times it) in both is followed (chance under FOLLOW_P)."""
+    from scipy.signal import lfilter
+
+    from circuitsim.loop.diagnose.describe import FOLLOW_P, _coherence_chance
+
+    n = 3200
+    t = np.arange(n) / 400.0
+    load = np.sign(np.sin(2 * np.pi * 1.2 * t)) * 2.0
+    for seed in range(4):
+        rng = np.random.default_rng(seed)
+        wander = lfilter([1.0], [1.0, -0.997], rng.normal(size=n)) * 0.1
+        speed = rng.normal(size=n) + wander
+        current = rng.normal(size=n)
+        assert _coherence_chance(t, speed, current) > FOLLOW_P, seed
+        assert _coherence_chance(t, speed + load, current - 0.8 * load) < FOLLOW_P, seed

@@ -20,8 +20,9 @@ ids equals the truth set (targets and harmonic orders matching; a physically ide
 listed in ``also_accept`` counts, e.g. force-offset for Coulomb friction on a shaft that never
 reverses); an accepted correction of a term the netlist already declares (``declared_terms``,
 e.g. an EMF harmonic of order 8 on motor A) is reported but not scored. A null record is
-right when nothing is accepted; an outside record when no catalog effect is accepted and the
-report flags remaining structure.
+right when nothing is accepted and the report says nothing remains (a coloured noise called
+"something remains that I cannot name" is a false alarm too); an outside record when no
+catalog effect is accepted and the report flags remaining structure.
 """
 
 from __future__ import annotations
@@ -289,8 +290,8 @@ def score(entry: dict, res: dict | None) -> dict:
     else:
         verdict = "wrong"
     cls = entry["class"]
-    if cls == "null":  # nothing is missing, and no declared value is off either
-        right = not new and not fixes
+    if cls == "null":  # nothing is missing, no declared value is off, nothing remains
+        right = not new and not fixes and not structure
     elif cls == "outside":
         right = not new and structure
     else:

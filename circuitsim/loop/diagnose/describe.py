@@ -16,6 +16,7 @@ import numpy as np
 
 from circuitsim.loop.diagnose.context import ModelState, Setup
 from circuitsim.loop.diagnose.noise import (
+    MEMORY_STRUCTURE_MAX,
     fit_whitener,
     lines_of,
     significant_lines,
@@ -42,6 +43,15 @@ FOLLOW_RHO = 0.8
 #: bins span (a resonance's skirt, a transient's spectrum), not by bins that name nothing.
 SPREAD_TOP = 0.25
 SPREAD_TOP3 = 0.5
+#: A probe whose residual is otherwise noise (structure at most ``MEMORY_STRUCTURE_MAX`` of
+#: it) but not white is its sensor's own coloured noise unless another probe's residual
+#: follows it: coherence at some frequency with a chance probability under this (Bonferroni
+#: over the bins and the other probes), from Welch's estimate over this many segments. A
+#: speed sensor's 1/f noise is seen by no other probe (the null records' largest coherence
+#: 0.2-0.4); a load the model lacks moves current and speeds together (fresh13's v12, a
+#: conveyor's parcel pitch: 0.99 between all three, its prewhitened share under 1 %).
+FOLLOW_P = 1e-3
+COHERENCE_SEGMENTS = 8
 #: The band of a spread structure: the frequencies where its cumulative excess reaches these
 #: fractions (its middle half: a resonance's skirt reaches far, its middle half does not).
 SPREAD_BAND = (0.25, 0.75)
@@ -76,9 +86,52 @@ def remaining(setup: Setup, state: ModelState) -> dict[str, Any]:
             entry["spread"] = spread
         if share >= MIN_SHARE or pval <= 1e-3:
             probes[p] = entry
+    coloured = _own_noise(setup, state, probes)
+    for p in coloured:
+        del probes[p]
     structure = bool(probes)
-    return {"structure": structure, "probes": probes, "note": _note(probes, resolved),
-            "below_resolution": resolved}
+    return {"structure": structure, "probes": probes, "note": _note(probes, resolved, coloured),
+            "below_resolution": resolved, **({"coloured": coloured} if coloured else {})}
+
+
+def _own_noise(setup: Setup, state: ModelState, probes: dict[str, Any]) -> dict[str, Any]:
+    """Of the reported ``probes``, those whose residual is otherwise noise and which no other
+    probe's residual follows (``FOLLOW_P``): their sensor's own coloured noise, each with the
+    chance probability of its strongest coherence. None on a record of one probe."""
+    if len(setup.probes) < 2:
+        return {}
+    t = np.asarray(setup.record.t, float)
+    res = {p: np.asarray(state.fit.residuals[p], float) for p in setup.probes}
+    out = {}
+    for p, e in probes.items():
+        if e["structured_share"] > MEMORY_STRUCTURE_MAX:
+            continue
+        others = [q for q in setup.probes if q != p]
+        chance = min(_coherence_chance(t, res[p], res[q]) for q in others) * len(others)
+        if chance > FOLLOW_P:
+            out[p] = {"coherence_chance": min(chance, 1.0),
+                      "white_after_prewhitening": e["white_after_prewhitening"],
+                      "rms_over_noise": e.get("rms_over_noise")}
+    return out
+
+
+def _coherence_chance(t: np.ndarray, x: np.ndarray, y: np.ndarray) -> float:
+    """The chance probability of the strongest magnitude-squared coherence of ``x`` and
+    ``y`` at times ``t`` [s] (on an even grid when uneven) over the frequencies resolved:
+    (1 - c)^(K - 1) per bin for independent noises over K segments, times the bins."""
+    from scipy.signal import coherence
+
+    from circuitsim.loop.record import even_grid
+
+    grid = even_grid(t)
+    if grid is not t:
+        x, y = np.interp(grid, t, x), np.interp(grid, t, y)
+    size = x.size // COHERENCE_SEGMENTS
+    if size < 16:
+        return 1.0
+    c = coherence(x, y, nperseg=size)[1][1:]
+    # Welch's half overlap gives about 2K - 1 segments, but only K independent ones
+    return float(c.size * (1.0 - float(np.max(c))) ** (COHERENCE_SEGMENTS - 1))
 
 
 def shaft_frequencies(state: ModelState) -> dict[str, tuple[float, bool]]:
@@ -362,12 +415,16 @@ def _follow_text(entry: dict[str, Any]) -> str:
     return ("; " + ", ".join(parts) + " (rank correlation over the record)") if parts else ""
 
 
-def _note(probes: dict[str, Any], resolved: list[str] | None = None) -> str:
+def _note(probes: dict[str, Any], resolved: list[str] | None = None,
+          coloured: dict[str, Any] | None = None) -> str:
+    own = (f" ({', '.join(coloured)}: otherwise noise, not white beyond its noise model, "
+           f"and no other probe follows it: not counted as structure)") if coloured else ""
     if not probes:
         if resolved:
             return (f"nothing significant remains: the model matches {', '.join(resolved)} to "
-                    f"within {RESOLUTION:g} of the spread, finer than any record resolves")
-        return "nothing significant remains: the residual is noise"
+                    f"within {RESOLUTION:g} of the spread, finer than any record resolves"
+                    + own)
+        return "nothing significant remains: the residual is noise" + own
     parts = []
     for p, e in probes.items():
         lines = lines_text(e)
@@ -384,4 +441,4 @@ def _note(probes: dict[str, Any], resolved: list[str] | None = None) -> str:
                      f"{when['kind']}{span}" + _follow_text(e) +
                      (f"; {lines}" if lines else "") +
                      ("" if e["white_after_prewhitening"] else "; not white"))
-    return "something remains that no catalog effect explains -- " + " | ".join(parts)
+    return "something remains that no catalog effect explains -- " + " | ".join(parts) + own

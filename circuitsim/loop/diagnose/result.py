@@ -91,7 +91,7 @@ class Diagnosis:
                              for a in self.effects)
         elif structure:
             head = "something remains that I cannot name: no effect of the catalog explains it"
-        elif self.remaining.get("below_resolution"):
+        elif self.remaining.get("below_resolution") or self.remaining.get("coloured"):
             head = "nothing significant: " + self.remaining["note"].split(": ", 1)[1]
         else:
             head = "nothing significant: no effect of the catalog explains the residual"
