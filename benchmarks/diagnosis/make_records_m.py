@@ -378,39 +378,16 @@ HARMONIC_EFFECTS = (
 )
 
 
-def imprints(s: dict[str, Any]) -> recordkit.Imprints:
-    """The null run and the imprints on the record's own times, once a record."""
-    if "imprints" not in s:
-        t = times(s)
-        s["imprints"] = recordkit.Imprints(lambda regime: sim(regime, t, {}), WHITE)
-    return s["imprints"]
-
-
-def alternatives(s: dict[str, Any]) -> dict[str, np.ndarray]:
-    """Label -> (n, 1) imprint of each scalar catalog effect, per unit size, linearised."""
-    regime, t = s["regime"], times(s)
-    return imprints(s).of_effects(regime, lambda fx: sim(regime, t, fx), SCALAR_EFFECTS,
-                                  sm.PROBES[regime], sm.REGIMES[regime][1], SENSORS,
-                                  columns=True)
-
-
-def harmonic_alternatives(s: dict[str, Any]) -> dict[str, np.ndarray]:
-    """Label -> (n, 2) imprints of each angle-locked catalog effect."""
-    regime, t = s["regime"], times(s)
-    return imprints(s).of_harmonics(regime, lambda fx: sim(regime, t, fx), HARMONIC_EFFECTS,
-                                    lambda label: 1e-5 if "emf" in label else 1e-4)
-
-
-def unexplained(s: dict[str, Any], clean: dict) -> dict:
-    """What the catalog's effects leave of an imprint [white sigma], linearised at the null:
-    after the best single one, and after all of them at once (least squares)."""
-    return imprints(s).unexplained(s["regime"], clean,
-                                   {**alternatives(s), **harmonic_alternatives(s)})
-
-
-def separation(s: dict[str, Any], clean: dict, same: set) -> dict[str, float]:
-    """Distance [white sigma] of the imprint from each other scalar effect's best-scaled one."""
-    return imprints(s).separation(s["regime"], clean, alternatives(s), same)
+#: the plumbing every later set shares (recordkit.Plumbing): truth entries, marginal
+#: scaling, the catalog's imprints an outside or marginal record is compared with, the CSV
+KIT = recordkit.Plumbing(
+    split=SPLIT, motor=MOTOR, netlist=NETLIST, white=WHITE, simulator=sm, sim=sim,
+    times=times, scalar_effects=SCALAR_EFFECTS, harmonic_effects=HARMONIC_EFFECTS,
+    harmonic_size=lambda label: 1e-5 if "emf" in label else 1e-4,
+    marginal_sigma=MARGINAL_SIGMA, sensor_steps=SENSORS,
+    declared=DECLARED, extra=lambda s: _location_entry(s))
+imprints = KIT.imprints
+make = KIT.make
 
 
 def moved(frag: dict, target: str, other: str) -> list[dict]:
@@ -449,62 +426,9 @@ def location(s: dict[str, Any]) -> list[dict[str, Any]]:
     return out
 
 
-def scale_marginal(s: dict[str, Any]) -> None:
-    """Scale a marginal record's size so that its best probe's signature is MARGINAL_SIGMA
-    on its own times (its effect is about linear in its size; two passes)."""
-    size = s["size"]
-    for _ in range(2):
-        clean = sim(s["regime"], times(s), s["fx"])
-        best = max(imprints(s).signature(s["regime"], clean).values())
-        size = float(f"{size * MARGINAL_SIGMA / best:.4g}")
-        s["parts"] = tuple(s["marginal"](size))
-        s["fx"], s["effects"] = combine(s["parts"])
-    s["size"] = size
-
-
-def truth_entry(s: dict[str, Any], sig: dict) -> dict:
-    """The record's entry of truth.json."""
-    regime, t = s["regime"], times(s)
-    ns = recordkit.noise_or_white(s, WHITE)
-    entry = {
-        "id": s["id"], "class": s["class"], "split": SPLIT, "motor": MOTOR,
-        "netlist": NETLIST[regime], "regime": regime, "sample_rate_Hz": mean_rate(t),
-        "duration_s": sm.REGIMES[regime][1], "csv": f"benchmarks/diagnosis/records/{s['id']}.csv",
-        "probes": list(sm.PROBES[regime]), "inputs": ["u"] if regime == "slow" else [],
-        "free": [], "declared_error": {}, "noise": ns, "noise_text": recordkit.noise_text(ns),
-        "seed": s["seed"]}
-    if "timestamps" in s:
-        entry["timestamps"] = s["timestamps"]
-    entry.update({
-        "samples": int(t.size), "effects": s["effects"], "declared_terms": DECLARED,
-        "signature_sigma": sig, "marginal": s["marginal"] is not None, "note": s["note"]})
-    return entry
-
-
-def make(s: dict[str, Any], write: bool) -> dict:
-    """One record: its truth entry, and its CSV when ``write``."""
-    regime, t = s["regime"], times(s)
-    if s["marginal"] is not None:
-        scale_marginal(s)
-    clean = sim(regime, t, s["fx"])
-    entry = truth_entry(s, imprints(s).signature(regime, clean))
-    if s["class"] == "outside":
-        entry["unexplained_sigma"] = unexplained(s, clean)
-    if s["marginal"] is not None:
-        e = s["effects"][0]
-        same = {e["effect"], *(a["effect"] for a in e.get("also_accept", []))}
-        entry["separation_sigma"] = separation(s, clean, same)
-    if s["class"] in ("catalog", "two"):
-        entry["location_sigma"] = location(s)
-    if write:
-        rng = np.random.default_rng(s["seed"])
-        ns = recordkit.noise_or_white(s, WHITE)
-        cols = {p: sm.add_noise(rng, t, clean[p], ns[p]) for p in sm.PROBES[regime]}
-        if regime == "slow":
-            cols["u"] = clean["u"]
-        RECORDS.mkdir(exist_ok=True)
-        recordkit.write_csv(RECORDS / f"{s['id']}.csv", t, cols)
-    return entry
+def _location_entry(s: dict[str, Any]) -> dict[str, Any]:
+    """A catalog or two-effect record's ``location_sigma`` (``location``)."""
+    return {"location_sigma": location(s)} if s["class"] in ("catalog", "two") else {}
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -389,81 +389,15 @@ HARMONIC_EFFECTS = (
 SENSOR_STEPS = (("gain", 1.001), ("offset", 1e-3))
 
 
-def imprints(s: dict[str, Any]) -> recordkit.Imprints:
-    """The null run and the imprints on the record's own times, once a record."""
-    if "imprints" not in s:
-        t = times(s)
-        s["imprints"] = recordkit.Imprints(lambda regime: sim(regime, t, {}), WHITE)
-    return s["imprints"]
-
-
-def alternatives(s: dict[str, Any]) -> dict[str, np.ndarray]:
-    """Label -> (n, 1) imprint of each scalar catalog effect, per unit size, linearised."""
-    regime, t = s["regime"], times(s)
-    return imprints(s).of_effects(regime, lambda fx: sim(regime, t, fx), SCALAR_EFFECTS,
-                                  so.PROBES[regime], so.REGIMES[regime][1], SENSOR_STEPS,
-                                  columns=True)
-
-
-def harmonic_alternatives(s: dict[str, Any]) -> dict[str, np.ndarray]:
-    """Label -> (n, 2) imprints of each angle-locked catalog effect."""
-    regime, t = s["regime"], times(s)
-    return imprints(s).of_harmonics(regime, lambda fx: sim(regime, t, fx), HARMONIC_EFFECTS,
-                                    lambda label: 1e-3)
-
-
-def scale_marginal(s: dict[str, Any]) -> None:
-    """Scale a marginal record's size so that its best probe's signature is MARGINAL_SIGMA
-    on its own times (about linear in its size; two passes)."""
-    size = s["size"]
-    for _ in range(2):
-        clean = sim(s["regime"], times(s), s["fx"])
-        best = max(imprints(s).signature(s["regime"], clean).values())
-        size = float(f"{size * MARGINAL_SIGMA / best:.4g}")
-        s["fx"], s["effects"] = recordkit.combine(s["marginal"](size))
-    s["size"] = size
-
-
-def truth_entry(s: dict[str, Any], sig: dict) -> dict:
-    """The record's entry of truth.json."""
-    regime, t = s["regime"], times(s)
-    ns = recordkit.noise_or_white(s, WHITE)
-    return {
-        "id": s["id"], "class": s["class"], "split": SPLIT, "motor": MOTOR,
-        "netlist": NETLIST[regime], "regime": regime,
-        "sample_rate_Hz": float((t.size - 1) / (t[-1] - t[0])),
-        "duration_s": so.REGIMES[regime][1], "csv": f"benchmarks/diagnosis/records/{s['id']}.csv",
-        "probes": list(so.PROBES[regime]), "inputs": ["u"] if regime == "slow" else [],
-        "free": [], "declared_error": {}, "noise": ns, "noise_text": recordkit.noise_text(ns),
-        "seed": s["seed"], "timestamps": s["timestamps"], "samples": int(t.size),
-        "effects": s["effects"], "declared_terms": [], "signature_sigma": sig,
-        "marginal": s["marginal"] is not None, "note": s["note"],
-    }
-
-
-def make(s: dict[str, Any], write: bool) -> dict:
-    """One record: its truth entry, and its CSV when ``write``."""
-    regime, t = s["regime"], times(s)
-    if s["marginal"] is not None:
-        scale_marginal(s)
-    clean = sim(regime, t, s["fx"])
-    entry = truth_entry(s, imprints(s).signature(regime, clean))
-    if s["class"] == "outside":
-        entry["unexplained_sigma"] = imprints(s).unexplained(
-            regime, clean, {**alternatives(s), **harmonic_alternatives(s)})
-    if s["marginal"] is not None:
-        e = s["effects"][0]
-        same = {e["effect"], *(a["effect"] for a in e.get("also_accept", []))}
-        entry["separation_sigma"] = imprints(s).separation(regime, clean, alternatives(s),
-                                                           same)
-    if write:
-        rng = np.random.default_rng(s["seed"])
-        ns = recordkit.noise_or_white(s, WHITE)
-        cols = {p: so.add_noise(rng, t, clean[p], ns[p]) for p in so.PROBES[regime]}
-        if regime == "slow":
-            cols["u"] = clean["u"]
-        recordkit.write_csv(RECORDS / f"{s['id']}.csv", t, cols)
-    return entry
+#: the plumbing every later set shares (recordkit.Plumbing): truth entries, marginal
+#: scaling, the catalog's imprints an outside or marginal record is compared with, the CSV
+KIT = recordkit.Plumbing(
+    split=SPLIT, motor=MOTOR, netlist=NETLIST, white=WHITE, simulator=so, sim=sim,
+    times=times, scalar_effects=SCALAR_EFFECTS, harmonic_effects=HARMONIC_EFFECTS,
+    harmonic_size=lambda label: 1e-3,
+    marginal_sigma=MARGINAL_SIGMA, sensor_steps=SENSOR_STEPS)
+imprints = KIT.imprints
+make = KIT.make
 
 
 def main(argv: list[str] | None = None) -> int:

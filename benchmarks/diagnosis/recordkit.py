@@ -20,7 +20,8 @@ import math
 import os
 import tempfile
 import time
-from collections.abc import Callable, Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping, Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -191,6 +192,118 @@ class Imprints:
             if kind not in same:
                 out[kind] = min(out.get(kind, math.inf), left(y, a))
         return out
+
+
+@dataclass(frozen=True)
+class Plumbing:
+    """What the later sets' generators share beyond their physics (``make_records_l.py``
+    ... ``make_records_o.py``): a record's truth entry, its marginal scaling, the catalog's
+    imprints it is compared with, its noisy CSV. A set gives its own names, netlists and
+    default white noise [probe unit], its simulator module (``REGIMES``, ``PROBES``,
+    ``add_noise``), its clean run ``sim(regime, t, fx)`` at times ``t`` [s], a record's times
+    ``times(spec)`` [s], the small catalog effects an imprint is compared with (the sizes of
+    the angle-locked ones by label), and the size of a marginal record's signature [white
+    sigma]."""
+
+    split: str
+    motor: str
+    netlist: Mapping[str, str]
+    white: Mapping[str, Mapping[str, float]]
+    simulator: Any
+    sim: Callable[[str, np.ndarray, dict], dict[str, np.ndarray]]
+    times: Callable[[dict[str, Any]], np.ndarray]
+    scalar_effects: Sequence[tuple[str, dict]]
+    harmonic_effects: Sequence[tuple[str, Callable[[float, float], dict]]]
+    harmonic_size: Callable[[str], float]
+    marginal_sigma: float
+    sensor_steps: Sequence[tuple[str, float]] = SENSOR_STEPS
+    #: the harmonic terms the set's netlist declares (truth's ``declared_terms``)
+    declared: Sequence[dict[str, Any]] = ()
+    #: what else a record's entry holds, from its spec (e.g. motor M's ``location_sigma``)
+    extra: Callable[[dict[str, Any]], dict[str, Any]] | None = None
+
+    def imprints(self, s: dict[str, Any]) -> Imprints:
+        """The null run and the imprints on the record's own times, once a record."""
+        if "imprints" not in s:
+            t = self.times(s)
+            s["imprints"] = Imprints(lambda regime: self.sim(regime, t, {}), self.white)
+        return s["imprints"]
+
+    def alternatives(self, s: dict[str, Any]) -> dict[str, np.ndarray]:
+        """Label -> (n, 1) imprint of each scalar catalog effect, per unit size, linearised."""
+        regime, t = s["regime"], self.times(s)
+        return self.imprints(s).of_effects(
+            regime, lambda fx: self.sim(regime, t, fx), self.scalar_effects,
+            self.simulator.PROBES[regime], self.simulator.REGIMES[regime][1],
+            self.sensor_steps, columns=True)
+
+    def harmonic_alternatives(self, s: dict[str, Any]) -> dict[str, np.ndarray]:
+        """Label -> (n, 2) imprints of each angle-locked catalog effect."""
+        regime, t = s["regime"], self.times(s)
+        return self.imprints(s).of_harmonics(regime, lambda fx: self.sim(regime, t, fx),
+                                             self.harmonic_effects, self.harmonic_size)
+
+    def scale_marginal(self, s: dict[str, Any]) -> None:
+        """Scale a marginal record's size so that its best probe's signature is the set's
+        marginal size on its own times (about linear in its size; two passes)."""
+        size = s["size"]
+        for _ in range(2):
+            clean = self.sim(s["regime"], self.times(s), s["fx"])
+            best = max(self.imprints(s).signature(s["regime"], clean).values())
+            size = float(f"{size * self.marginal_sigma / best:.4g}")
+            s["parts"] = tuple(s["marginal"](size))
+            s["fx"], s["effects"] = combine(s["parts"])
+        s["size"] = size
+
+    def truth_entry(self, s: dict[str, Any], sig: dict) -> dict:
+        """The record's entry of truth.json."""
+        regime, t = s["regime"], self.times(s)
+        ns = noise_or_white(s, self.white)
+        entry = {
+            "id": s["id"], "class": s["class"], "split": self.split, "motor": self.motor,
+            "netlist": self.netlist[regime], "regime": regime,
+            "sample_rate_Hz": float((t.size - 1) / (t[-1] - t[0])),
+            "duration_s": self.simulator.REGIMES[regime][1],
+            "csv": f"benchmarks/diagnosis/records/{s['id']}.csv",
+            "probes": list(self.simulator.PROBES[regime]),
+            "inputs": ["u"] if regime == "slow" else [], "free": [], "declared_error": {},
+            "noise": ns, "noise_text": noise_text(ns), "seed": s["seed"]}
+        if "timestamps" in s:
+            entry["timestamps"] = s["timestamps"]
+        entry.update({
+            "samples": int(t.size), "effects": s["effects"],
+            "declared_terms": list(self.declared), "signature_sigma": sig,
+            "marginal": s["marginal"] is not None, "note": s["note"]})
+        return entry
+
+    def make(self, s: dict[str, Any], write: bool) -> dict:
+        """One record: its truth entry, and its CSV when ``write``."""
+        regime, t = s["regime"], self.times(s)
+        if s["marginal"] is not None:
+            self.scale_marginal(s)
+        clean = self.sim(regime, t, s["fx"])
+        imp = self.imprints(s)
+        entry = self.truth_entry(s, imp.signature(regime, clean))
+        if s["class"] == "outside":
+            entry["unexplained_sigma"] = imp.unexplained(
+                regime, clean, {**self.alternatives(s), **self.harmonic_alternatives(s)})
+        if s["marginal"] is not None:
+            e = s["effects"][0]
+            same = {e["effect"], *(a["effect"] for a in e.get("also_accept", []))}
+            entry["separation_sigma"] = imp.separation(regime, clean, self.alternatives(s),
+                                                       same)
+        if self.extra is not None:
+            entry.update(self.extra(s))
+        if write:
+            rng = np.random.default_rng(s["seed"])
+            ns = noise_or_white(s, self.white)
+            cols = {p: self.simulator.add_noise(rng, t, clean[p], ns[p])
+                    for p in self.simulator.PROBES[regime]}
+            if regime == "slow":
+                cols["u"] = clean["u"]
+            RECORDS.mkdir(exist_ok=True)
+            write_csv(RECORDS / f"{s['id']}.csv", t, cols)
+        return entry
 
 
 def left(y: np.ndarray, x: np.ndarray) -> float:
