@@ -918,3 +918,21 @@ def test_a_slow_noise_no_other_probe_follows_is_not_structure_a_load_both_see_is
         current = rng.normal(size=n)
         assert _coherence_chance(t, speed, current) > FOLLOW_P, seed
         assert _coherence_chance(t, speed + load, current - 0.8 * load) < FOLLOW_P, seed
+
+
+def test_a_long_memory_is_noise_a_line_beside_it_is_not():
+    """describe._long_memory on 8 s at 500 Hz, 4 seeds: a 1/f-like noise (white noise
+    fractionally integrated, d = 0.4, plus white) is noise once its long memory is taken out;
+    the same with a 37 Hz ripple of 15 % of its power (a tachometer's ripple, seen by its own
+    probe alone) keeps a line, so the coherence rule never reads it as the sensor's noise."""
+    from circuitsim.loop.diagnose.describe import _long_memory
+    from circuitsim.loop.diagnose.noise import fractional_difference
+
+    n = 4000
+    t = np.arange(n) / 500.0
+    for seed in range(4):
+        rng = np.random.default_rng(seed)
+        r = fractional_difference(rng.normal(size=n), -0.4) + 0.5 * rng.normal(size=n)
+        ripple = math.sqrt(2 * 0.15 * np.var(r)) * np.sin(2 * np.pi * 37.0 * t)
+        assert _long_memory(t, r), seed
+        assert not _long_memory(t, r + ripple), seed

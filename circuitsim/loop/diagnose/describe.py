@@ -19,6 +19,7 @@ from circuitsim.loop.diagnose.noise import (
     MEMORY_STRUCTURE_MAX,
     fit_whitener,
     lines_of,
+    memory_whiteners,
     significant_lines,
     transient_excess,
     whiteners_of,
@@ -95,16 +96,19 @@ def remaining(setup: Setup, state: ModelState) -> dict[str, Any]:
 
 
 def _own_noise(setup: Setup, state: ModelState, probes: dict[str, Any]) -> dict[str, Any]:
-    """Of the reported ``probes``, those whose residual is otherwise noise and which no other
-    probe's residual follows (``FOLLOW_P``): their sensor's own coloured noise, each with the
-    chance probability of its strongest coherence. None on a record of one probe."""
+    """Of the reported ``probes``, those whose residual is otherwise noise -- its lines and
+    transients under ``MIN_SHARE``, as prewhitened or once a long memory is taken out
+    (``_long_memory``): reported for not being white -- and which no other probe's residual
+    follows (``FOLLOW_P``): their sensor's own coloured noise, each with the chance
+    probability of its strongest coherence. None on a record of one probe."""
     if len(setup.probes) < 2:
         return {}
     t = np.asarray(setup.record.t, float)
     res = {p: np.asarray(state.fit.residuals[p], float) for p in setup.probes}
     out = {}
     for p, e in probes.items():
-        if e["structured_share"] > MEMORY_STRUCTURE_MAX:
+        if e["structured_share"] > MEMORY_STRUCTURE_MAX or not (
+                e["structured_share"] < MIN_SHARE or _long_memory(t, res[p])):
             continue
         others = [q for q in setup.probes if q != p]
         chance = min(_coherence_chance(t, res[p], res[q]) for q in others) * len(others)
@@ -113,6 +117,21 @@ def _own_noise(setup: Setup, state: ModelState, probes: dict[str, Any]) -> dict[
                       "white_after_prewhitening": e["white_after_prewhitening"],
                       "rms_over_noise": e.get("rms_over_noise")}
     return out
+
+
+def _long_memory(t: np.ndarray, r: np.ndarray) -> bool:
+    """Whether a residual ``r`` at times ``t`` [s] is noise with long memory: one the
+    long-memory whitener (a fractional difference, then AR) leaves with structure under
+    ``MIN_SHARE`` where the AR filter alone did not. A line -- a tachometer's ripple seen by
+    its own probe alone -- outlasts a fractional difference and keeps its share."""
+    w = memory_whiteners({"r": r}, ["r"])["r"]
+    if not w.d:
+        return False
+    e = w.apply(r)
+    lines = lines_of(e, t, r, w)
+    share = max(lines.structured / lines.total if lines.total > 0 else 0.0,
+                transient_excess(e) / max(float(e @ e), 1e-300))
+    return share < MIN_SHARE
 
 
 def _coherence_chance(t: np.ndarray, x: np.ndarray, y: np.ndarray) -> float:

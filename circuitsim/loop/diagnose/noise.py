@@ -251,6 +251,8 @@ def lines_of(e: np.ndarray, t: np.ndarray, r: np.ndarray, whitener: Whitener) ->
     if grid is t:
         return significant_lines(e, float(np.mean(np.diff(t))))
     moved = np.interp(grid, t, np.asarray(r, float))
+    if whitener.d:  # the long memory the record grid's whitener takes out, taken out here
+        moved = fractional_difference(moved, whitener.d)
     own = fit_whitener(moved)
     lines = significant_lines(own.apply(moved), float(grid[1] - grid[0]))
     scale = (whitener.sigma / own.sigma) ** 2 if own.sigma > 0.0 else 1.0
