@@ -129,9 +129,7 @@ def sensor(probe: str, kind: str, value: float):
         "parameters": {kind: value}, "expected": {kind: value}}
 
 
-def outside(kind: str, fx: dict, params: dict):
-    return fx, {"effect": f"outside:{kind}", "target": None, "targets": None,
-                "parameters": params, "expected": {}}
+outside = recordkit.outside
 
 
 NESTED = ("sensor", "p", "cog", "coul", "visc", "offset")

@@ -130,9 +130,7 @@ def drift(alpha: float):
         "expected": {"alpha": alpha}}
 
 
-def outside(kind: str, fx: dict, params: dict):
-    return fx, {"effect": f"outside:{kind}", "target": None, "targets": None,
-                "parameters": params, "expected": {}}
+outside = recordkit.outside
 
 
 combine = recordkit.combine

@@ -132,9 +132,7 @@ def source_resistance(r: float, regime: str):
                          "expected": {"R": r}}]}
 
 
-def outside(kind: str, fx: dict, params: dict):
-    return fx, {"effect": f"outside:{kind}", "target": None, "targets": None,
-                "parameters": params, "expected": {}}
+outside = recordkit.outside
 
 
 combine = recordkit.combine

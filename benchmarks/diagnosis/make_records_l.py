@@ -144,10 +144,7 @@ def viscous(node: str, b: float) -> Part:
         "expected": {"b": b}, "also_accept": _on_rotor("viscous-friction", node, "b", b, 2)}
 
 
-def outside(kind: str, fx: dict, params: dict) -> Part:
-    """An effect outside the catalog: its simulator keys and its law in words."""
-    return fx, {"effect": f"outside:{kind}", "target": None, "targets": None,
-                "parameters": params, "expected": {}}
+outside = recordkit.outside
 
 
 combine = recordkit.combine

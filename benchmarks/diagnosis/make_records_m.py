@@ -150,10 +150,7 @@ def viscous(node: str, b: float) -> Part:
         "expected": {"b": b}}
 
 
-def outside(kind: str, fx: dict, params: dict) -> Part:
-    """An effect outside the catalog: its simulator keys and its law in words."""
-    return fx, {"effect": f"outside:{kind}", "target": None, "targets": None,
-                "parameters": params, "expected": {}}
+outside = recordkit.outside
 
 
 combine = recordkit.combine

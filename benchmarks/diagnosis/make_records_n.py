@@ -140,10 +140,7 @@ def viscous(node: str, b: float) -> Part:
         "expected": {"b": b}, "also_accept": _other_shaft("viscous-friction", node, "b", b, 2)}
 
 
-def outside(kind: str, fx: dict, params: dict) -> Part:
-    """An effect outside the catalog: its simulator keys and its law in words."""
-    return fx, {"effect": f"outside:{kind}", "target": None, "targets": None,
-                "parameters": params, "expected": {}}
+outside = recordkit.outside
 
 
 combine = recordkit.combine

@@ -135,10 +135,7 @@ def brush_drop(vb: float) -> Part:
         "expected": {"Vb": vb}}
 
 
-def outside(kind: str, fx: dict, params: dict) -> Part:
-    """An effect outside the catalog: its simulator keys and its law in words."""
-    return fx, {"effect": f"outside:{kind}", "target": None, "targets": None,
-                "parameters": params, "expected": {}}
+outside = recordkit.outside
 
 
 def sim(regime: str, t: np.ndarray, fx: dict) -> dict[str, np.ndarray]:

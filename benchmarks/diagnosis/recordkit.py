@@ -62,6 +62,13 @@ def combine(parts: Iterable[tuple[dict, dict]], nested: tuple[str, ...] = NESTED
     return fx, effects
 
 
+def outside(kind: str, fx: dict, params: dict) -> tuple[dict, dict]:
+    """An effect outside the catalog: its simulator keys ``fx`` and its truth entry (its
+    ``params`` and its law in words), which no catalog label matches."""
+    return fx, {"effect": f"outside:{kind}", "target": None, "targets": None,
+                "parameters": params, "expected": {}}
+
+
 def jittered_times(rng: np.random.Generator, fs: float, duration: float, jitter: float,
                    step: float = 1e-9) -> np.ndarray:
     """A fast acquisition's times [s]: the grid k/fs [Hz], each time but the first moved by
