@@ -385,6 +385,7 @@ KIT = recordkit.Plumbing(
     declared=DECLARED, extra=lambda s: _location_entry(s))
 imprints = KIT.imprints
 make = KIT.make
+scale_marginal = KIT.scale_marginal
 
 
 def moved(frag: dict, target: str, other: str) -> list[dict]:

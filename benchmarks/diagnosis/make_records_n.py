@@ -402,6 +402,7 @@ KIT = recordkit.Plumbing(
     marginal_sigma=MARGINAL_SIGMA)
 imprints = KIT.imprints
 make = KIT.make
+scale_marginal = KIT.scale_marginal
 
 
 def main(argv: list[str] | None = None) -> int:

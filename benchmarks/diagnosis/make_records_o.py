@@ -395,6 +395,7 @@ KIT = recordkit.Plumbing(
     marginal_sigma=MARGINAL_SIGMA, sensor_steps=SENSOR_STEPS)
 imprints = KIT.imprints
 make = KIT.make
+scale_marginal = KIT.scale_marginal
 
 
 def main(argv: list[str] | None = None) -> int:
