@@ -693,6 +693,31 @@ def test_orders_are_proposed_from_a_shaft_that_reverses():
     assert _order_peaks(sim, {"rotor": float(np.mean(w))}, t, noise, []) == []
 
 
+def test_each_shaft_proposes_at_most_its_own_few_orders():
+    """residual._order_peaks on two shafts that turn forward, a rotor and a flywheel behind
+    a 1:2 step-up, each residual holding six orders of its own shaft: each shaft proposes
+    its ``ORDER_LINES`` largest, the second as few as the first (counted over both, the cap
+    held only for the first shaft, and fresh15's flywheel proposed dozens of orders)."""
+    from circuitsim.loop.diagnose.residual import ORDER_LINES, _order_peaks
+
+    t = np.arange(40000) / 40000.0
+    w = 2 * np.pi * np.interp(t, [0.0, 0.1, 1.0], [0.0, 20.0, 25.0])
+    phi = np.concatenate([[0.0], np.cumsum(0.5 * (w[1:] + w[:-1]) * np.diff(t))])
+    sim = {"rotor.phi": phi, "rotor.w": w, "fly.phi": 2 * phi, "fly.w": 2 * w}
+    orders = (3, 5, 7, 11, 13, 17)
+    r = np.random.default_rng(3).normal(0.0, 0.01, t.size)
+    for j, k in enumerate(orders):
+        size = 0.1 / (j + 1)  # largest first
+        r += size * (np.sin(k * phi + 0.3) + np.sin(k * 2 * phi + 0.7 + 0.01 * k))
+    speeds = {"rotor": float(np.mean(w)), "fly": float(np.mean(2 * w))}
+    peaks = _order_peaks(sim, speeds, t, r, [])
+    per_shaft = {n: [p["orders"][n] for p in peaks if n in p["orders"]] for n in speeds}
+    assert len(per_shaft["rotor"]) == ORDER_LINES
+    assert len(per_shaft["fly"]) == ORDER_LINES
+    assert set(per_shaft["fly"]) <= {*orders, *(k / 2 for k in orders)}
+    assert per_shaft["fly"][0] == 3  # its largest own order
+
+
 @pytest.fixture
 def queue(monkeypatch):
     """A recorder in place of the compile-ahead worker (``solve/ahead.py``): (what was
