@@ -109,3 +109,23 @@ def check_set(cs: Any, motor: str, specs: list[dict], scale_marginal: Any, patch
     print(f"worst max |diff|/range {worst:.2e} -> {'OK' if worst < target else 'ABOVE'} "
           f"(target {target:g})")
     return 0 if worst < target else 1
+
+
+def check_records(cs: Any, specs: list[dict], times: Any, scale_marginal: Any, check: Any,
+                  target: float, argv: Sequence[str] = ()) -> int:
+    """Each record of a set sampled at its own times (``times`` fills them in), marginal
+    ones scaled first, through the set's ``check`` (worst difference relative to a probe's
+    range); ``argv[0]``, when given, selects record ids, comma-separated. Prints the worst
+    difference and returns the exit status (0: below ``target``)."""
+    only = set(argv[0].split(",")) if argv else None
+    worst = 0.0
+    for s in specs:
+        if only and s["id"] not in only:
+            continue
+        times(s)
+        if s["marginal"] is not None:
+            scale_marginal(s)
+        worst = max(worst, check(cs, s))
+    print(f"worst max |diff|/range {worst:.2e} -> {'OK' if worst < target else 'ABOVE'} "
+          f"(target {target:g})")
+    return 0 if worst < target else 1

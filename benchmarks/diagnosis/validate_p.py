@@ -152,18 +152,8 @@ def main() -> int:
     warnings.simplefilter("ignore")
     import circuitsim as cs
 
-    only = set(sys.argv[1].split(",")) if len(sys.argv) > 1 else None
-    worst = 0.0
-    for s in record_specs():
-        if only and s["id"] not in only:
-            continue
-        times(s)
-        if s["marginal"] is not None:
-            scale_marginal(s)
-        worst = max(worst, check(cs, s))
-    print(f"worst max |diff|/range {worst:.2e} -> {'OK' if worst < TARGET else 'ABOVE'} "
-          f"(target {TARGET:g})")
-    return 0 if worst < TARGET else 1
+    return crosscheck.check_records(cs, record_specs(), times, scale_marginal, check, TARGET,
+                                    sys.argv[1:2])
 
 
 if __name__ == "__main__":
