@@ -9,8 +9,8 @@ from typing import Any
 import numpy as np
 
 ORDER_TOL = 0.03  # a spectral peak is order k when |f/f_shaft - k| < ORDER_TOL k
-#: Share of the structure of the residual on a reversing shaft's travelled angle a line must
-#: hold to be proposed as an order (as the description asks to name one: describe)
+#: Share of the structure of the residual on a shaft's angle a line must hold to be proposed
+#: as an order (as the description asks to name one: describe)
 ORDER_SHARE = 0.25
 #: Lines of the angle spectrum proposed as orders, per shaft, largest first. Counted over all
 #: shafts together until 2026-11-28, the cap held only for the first: a 40 kHz record of a
@@ -202,24 +202,23 @@ def _forward_angle(t: np.ndarray, phi: np.ndarray, w: np.ndarray, r: np.ndarray
 def _order_peaks(sim, speeds, t, r, known) -> list[dict[str, Any]]:
     """Peaks of the residual's spectrum in the shaft angle (order tracking), where the time
     spectrum smears a harmonic of a changing speed. A shaft that turns forward only is read
-    on its angle from the moment it turns (``_forward_angle``): a line counts when its
-    amplitude exceeds what noise reaches in any bin with probability 1 % (Rayleigh
-    amplitudes, Bonferroni over the bins) against the median amplitude. One that reverses is
-    read on the angle it travels (``on_travelled_angle``, as the description reads it): a
+    on its angle from the moment it turns (``_forward_angle``); one that reverses, on the
+    angle it travels (``on_travelled_angle``, as the description reads it). Either way a
     line counts when it stands out of the prewhitened spectrum (``noise.significant_lines``)
-    and holds ``ORDER_SHARE`` of its structure. Resampling on the angle colours even white
-    noise, and a line fixed in time (a filter's ringing) smears over dozens of orders of a
-    changing speed: against one flat background each passed for an order (fresh6's k12:
-    cogging of orders 13-180 proposed, round after round)."""
+    and holds ``ORDER_SHARE`` of its structure (``_angle_lines``). Resampling on the angle
+    colours even white noise, and a line fixed in time (a filter's ringing) or a drag that
+    follows no angle smears over dozens of orders of a changing speed: against the median
+    amplitude as a flat background each passed for an order (fresh6's k12 on a reversing
+    shaft: cogging of orders 13-180 proposed, round after round; fresh15's x11 on a forward
+    one until 2026-11-28: an eddy drag, 33 cogging orders a round, the highest 188). An order
+    too faint for the spectrum is the order scan's to find, by its fit gain (``scan``)."""
     out: list[dict[str, Any]] = []
     for n in speeds:
         mine = 0  # this shaft's lines: each shaft gets its own ORDER_LINES
         w = np.asarray(sim[f"{n}.w"], float)
         forward = _forward_angle(t, np.asarray(sim[f"{n}.phi"], float), w, r)
-        lines = forward and _flat_lines(*forward)
-        if forward is None:  # it reverses
-            lines = _tracked_lines(t, w, r)
-        for order, amp in lines or []:
+        resampled = forward or on_travelled_angle(t, w, r)  # None: under two turns
+        for order, amp in _angle_lines(*resampled) if resampled else []:
             kk = round(order)
             if kk < 1 or abs(order - kk) > ORDER_TOL * kk:
                 continue
@@ -245,33 +244,21 @@ def _hann_amplitudes(grid: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.nd
     return np.fft.rfftfreq(m, (grid[1] - grid[0]) / (2 * math.pi)), amp
 
 
-def _flat_lines(grid: np.ndarray, x: np.ndarray) -> list[tuple[float, float]]:
-    """(order, amplitude) of the bins above the Rayleigh level of the median amplitude,
-    largest first (at most 200 looked at)."""
-    orders, amp = _hann_amplitudes(grid, x)
-    floor = float(np.median(amp[1:])) if amp.size > 2 else 0.0
-    level = math.sqrt(math.log(max(amp.size, 2) / 0.01) / math.log(2.0)) * floor
-    return [(float(orders[k]), float(amp[k])) for k in np.argsort(amp)[::-1][:200]
-            if amp[k] >= level]
-
-
-def _tracked_lines(t: np.ndarray, w: np.ndarray, r: np.ndarray
-                   ) -> list[tuple[float, float]] | None:
-    """(order, amplitude) of the significant lines of the residual on the travelled angle
-    that hold ``ORDER_SHARE`` of its structure, largest first."""
+def _angle_lines(grid: np.ndarray, x: np.ndarray) -> list[tuple[float, float]]:
+    """(order, amplitude) of the significant lines of the residual ``x`` on the uniform angle
+    ``grid`` [rad] that hold ``ORDER_SHARE`` of its structure, largest first."""
     from circuitsim.loop.diagnose.noise import fit_whitener, significant_lines
 
-    tracked = on_travelled_angle(t, w, r)
-    if tracked is None:
-        return None
-    grid, x = tracked
     x = x - np.polyval(np.polyfit(grid, x, 1), grid)
     step = (grid[1] - grid[0]) / (2 * math.pi)  # [turns]
     lines = significant_lines(fit_whitener(x).apply(x), step)
     orders, amp = _hann_amplitudes(grid, x)
+    # what varies slower than once a turn (a drag following the speed) is no order's share
+    turning = lines.freqs >= 0.5
+    structured = float(lines.excess[turning].sum())
     return [(float(lines.freqs[k]), float(np.interp(lines.freqs[k], orders, amp)))
             for k in np.argsort(lines.excess)[::-1]
-            if lines.excess[k] >= ORDER_SHARE * lines.structured]
+            if turning[k] and lines.excess[k] >= ORDER_SHARE * structured]
 
 
 def _orders(analysis: Mapping[str, Any]) -> dict[str, list[int]]:
