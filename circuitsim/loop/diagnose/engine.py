@@ -371,12 +371,12 @@ def _rigid_key(state: ModelState, c: Any, shafts: list[tuple[str, np.ndarray]]
     top = float(np.max(np.abs(w))) if w.size else 0.0
     if top == 0.0:
         return None
-    ratios = ((name, float(w @ v) / float(v @ v)) for name, v in shafts)  # w = ratio v
-    name, ratio = next(((n, k) for (n, k), (_, v) in zip(ratios, shafts, strict=True)
-                        if k != 0.0 and np.allclose(w, k * v, rtol=1e-6, atol=1e-9 * top)),
-                       (c.target, 1.0))
-    if name == c.target and not any(n == c.target for n, _ in shafts):
-        shafts.append((c.target, w))
+    name, ratio = next(((n, k) for n, v in shafts  # w = k v
+                        if (k := float(w @ v) / float(v @ v)) != 0.0
+                        and np.allclose(w, k * v, rtol=1e-6, atol=1e-9 * top)), (None, 1.0))
+    if name is None:  # the first of its kind
+        name = c.target
+        shafts.append((name, w))
     order = c.fixed.get("order")
     return c.effect, name, None if order is None else round(float(order) * abs(ratio), 6)
 
