@@ -282,43 +282,6 @@ def test_swap_tries_each_set_of_effects_once_and_never_one_effect_twice():
         [("coulomb",)]
 
 
-def test_a_torque_on_either_of_two_rigidly_geared_shafts_is_screened_once():
-    """engine._distinct: a rotor and a pinion behind a rigid 1:2 step-up turn as one, a
-    flywheel behind a compliant quill does not. A friction, an offset or a cogging on the
-    pinion is the same circuit as on the rotor (a cogging of order 24 on the pinion is one of
-    order 48 on the rotor) and is named with it, not screened again; the flywheel's and an
-    order with no twin are screened, as is a resistance with no twin in series."""
-    from types import SimpleNamespace
-
-    from circuitsim.loop.diagnose.engine import _distinct
-
-    t = np.linspace(0.0, 0.5, 2001)
-    w = 300.0 * (1 - np.exp(-t / 0.05)) - 80.0 * (t > 0.3)
-    sim = {"rotor.w": w, "pinion.w": 2.0 * w, "fly.w": 2.0 * w + 0.5 * np.sin(600 * t),
-           "Ra.i": np.ones_like(t)}
-    state = SimpleNamespace(fit=SimpleNamespace(sim=sim))
-
-    def prop(effect: str, target: str, order: int | None = None):
-        fixed = {} if order is None else {"order": order}
-        key = f"{effect}:{target}" + ("" if order is None else f":{order}")
-        return SimpleNamespace(candidate=SimpleNamespace(effect=effect, target=target,
-                                                         fixed=fixed, key=key))
-
-    props = [prop("coulomb-friction", "rotor"), prop("coulomb-friction", "pinion"),
-             prop("coulomb-friction", "fly"), prop("viscous-friction", "pinion"),
-             prop("viscous-friction", "rotor"), prop("cogging", "rotor", 48),
-             prop("cogging", "pinion", 24), prop("cogging", "pinion", 25),
-             prop("cogging", "fly", 24), prop("series-resistance", "Ra")]
-    log: dict = {}
-    kept = [p.candidate.key for p in _distinct(state, props, log)]
-    assert kept == ["coulomb-friction:rotor", "coulomb-friction:fly", "viscous-friction:pinion",
-                    "cogging:rotor:48", "cogging:pinion:25", "cogging:fly:24",
-                    "series-resistance:Ra"]
-    assert log["twins"] == {"coulomb-friction:rotor": ["coulomb-friction:pinion"],
-                            "viscous-friction:pinion": ["viscous-friction:rotor"],
-                            "cogging:rotor:48": ["cogging:pinion:24"]}
-
-
 def test_a_trial_beyond_a_physical_limit_is_rejected_with_its_reason():
     """An effect whose parameters together leave their physical range (a warm-up faster
     than copper heats) is no finding however much it gains: rejected, the reason in its

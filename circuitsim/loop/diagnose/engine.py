@@ -327,58 +327,23 @@ RELATIVE = ("inductance", "resistance-drift")
 SAME_FIT = 1e-7
 
 
-#: torques on a shaft: on either of two shafts a rigid gear ties together they are the same
-#: circuit (the torque reflects through the ratio; a cogging of order k on one is one of
-#: order k times the ratio on the other)
-SHAFT_TORQUES = ("viscous-friction", "coulomb-friction", "force-offset", "cogging")
-
-
 def _distinct(state: ModelState, proposals: list, log: dict[str, Any]) -> list:
     """A resistance in series with any of several elements that carry the same current is
-    the same circuit, and so is a torque on either of two shafts that turn as one
-    (``_rigid_key``): one of them is screened, and the others are named with it. Screened
-    apart, twins took two of the refits' places and were refitted to the same fit (fresh8's
-    p05: cogging of order 14 on the rotor and of order 35 on the screw, ΔBIC -16482.1 both)."""
-    out, seen, shafts, torques = [], [], [], {}
+    the same circuit: one of them is screened, and the others are named with it."""
+    out, seen = [], []
     for prop in proposals:
-        c, twin = prop.candidate, None
-        if c.effect in SHAFT_TORQUES:
-            key = _rigid_key(state, c, shafts)
-            first = c.key if key is None else torques.setdefault(key, c.key)
-            twin = None if first == c.key else first
-        elif c.effect in SERIES and (i := _current(state, c.target)) is not None:
-            twin = next((k for k, j in seen if _same_current(i, j)), None)
-            if twin is None:
-                seen.append((c.key, i))
+        c = prop.candidate
+        i = _current(state, c.target) if c.effect in SERIES else None
+        if i is None:
+            out.append(prop)
+            continue
+        twin = next((k for k, j in seen if _same_current(i, j)), None)
         if twin is None:
+            seen.append((c.key, i))
             out.append(prop)
         else:
             log.setdefault("twins", {}).setdefault(twin, []).append(c.key)
     return out
-
-
-def _rigid_key(state: ModelState, c: Any, shafts: list[tuple[str, np.ndarray]]
-               ) -> tuple[str, str, float | None] | None:
-    """(effect, the first shaft seen that turns as one with the candidate's, its order on
-    that shaft) of a shaft torque; ``shafts`` collects the shafts seen, with their speeds.
-    Two shafts turn as one when one's speed is a fixed multiple of the other's all through
-    the fitted run (a rigid gear, whatever declares it). None when the target's speed is
-    not in the run or it never turns."""
-    try:
-        w = np.asarray(state.fit.sim[f"{c.target}.w"], float)
-    except KeyError:
-        return None
-    top = float(np.max(np.abs(w))) if w.size else 0.0
-    if top == 0.0:
-        return None
-    name, ratio = next(((n, k) for n, v in shafts  # w = k v
-                        if (k := float(w @ v) / float(v @ v)) != 0.0
-                        and np.allclose(w, k * v, rtol=1e-6, atol=1e-9 * top)), (None, 1.0))
-    if name is None:  # the first of its kind
-        name = c.target
-        shafts.append((name, w))
-    order = c.fixed.get("order")
-    return c.effect, name, None if order is None else round(float(order) * abs(ratio), 6)
 
 
 def _current(state: ModelState, target: str) -> np.ndarray | None:
@@ -913,12 +878,10 @@ def report(setup: Setup, state0: ModelState, state: ModelState, log: dict[str, A
     accepted = _merge_refinements(accepted)
     for choice in state.chosen:
         twins = log.get("twins", {}).get(choice.candidate.key)
-        why = ("the shafts turn as one" if choice.candidate.effect in SHAFT_TORQUES else
-               "the elements carry the same current")
         if twins:
             log["indistinct"].append(
                 f"{choice.candidate.key} is the same circuit as {', '.join(sorted(set(twins)))}"
-                f" ({why}): the data cannot tell them apart")
+                f" (the elements carry the same current): the data cannot tell them apart")
     rest = remaining(setup, state)
     if "stand_ins" in log:  # what a catalog effect would have explained of it
         rest["note"] += f" ({log['stand_ins']})"
