@@ -11,12 +11,7 @@ import numpy as np
 ORDER_TOL = 0.03  # a spectral peak is order k when |f/f_shaft - k| < ORDER_TOL k
 #: Share of the structure of the residual on a shaft's angle a line must hold to be proposed
 #: as an order (as the description asks to name one: describe)
-ORDER_SHARE = 0.25
-#: Lines of the angle spectrum proposed as orders, per shaft, largest first. Counted over all
-#: shafts together until 2026-11-28, the cap held only for the first: a 40 kHz record of a
-#: flywheel behind a compliant quill (fresh15's x05) proposed 131 orders on the two shafts
-#: behind it, and a joint screen of 306 runs of a 2000-line model took 29 s of its 37.
-ORDER_LINES = 4
+ORDER_SHARE = 0.25  # so at most four lines a shaft: fresh15's x05 once proposed 131
 
 
 #: The finest a record resolves, as a fraction of a probe's spread: no sensor reads better than
@@ -214,7 +209,6 @@ def _order_peaks(sim, speeds, t, r, known) -> list[dict[str, Any]]:
     too faint for the spectrum is the order scan's to find, by its fit gain (``scan``)."""
     out: list[dict[str, Any]] = []
     for n in speeds:
-        mine = 0  # this shaft's lines: each shaft gets its own ORDER_LINES
         w = np.asarray(sim[f"{n}.w"], float)
         forward = _forward_angle(t, np.asarray(sim[f"{n}.phi"], float), w, r)
         resampled = forward or on_travelled_angle(t, w, r)  # None: under two turns
@@ -228,9 +222,6 @@ def _order_peaks(sim, speeds, t, r, known) -> list[dict[str, Any]]:
             rate = speeds[n] if forward else float(np.mean(np.abs(w)))
             out.append({"frequency": float(kk * rate / (2 * math.pi)), "amplitude": amp,
                         "orders": {n: kk}, "domain": "angle"})
-            mine += 1
-            if mine == ORDER_LINES:
-                break
     return out
 
 
