@@ -9,6 +9,8 @@ each named by a digest of what it holds:
   with numba's machine code for it in ``__pycache__/kNAME_kernels.*.nbi|nbc``; before
   kernels were named by their source they were named by their model, ``mKEY_kernels.py``:
   such files are never read again and go first;
+- a kernel module compiled by the C compiler (``solve/ccode.py``), ``cNAME.so``, named by
+  its C text and the compiler's command;
 - the kernels' helper library, one per version: ``circuitsim_kernel_lib_HASH.py`` and its
   numba files;
 - small tables of pure functions' results: ``memo-NAME-VERSION.json`` (``memo.py``).
@@ -44,7 +46,7 @@ from circuitsim.errors import CircuitsimError
 
 #: [s] an entry used more recently than this is never pruned: it may be in use right now
 GRACE = 600.0
-_ENTRY = re.compile(r"^(?P<stem>[mk][0-9a-f]{24}_kernels|m[0-9a-f]{24}|"
+_ENTRY = re.compile(r"^(?P<stem>[mk][0-9a-f]{24}_kernels|m[0-9a-f]{24}|c[0-9a-f]{24}|"
                     r"circuitsim_kernel_lib_[0-9a-f]{12}|memo-[A-Za-z0-9_]+-[0-9a-f]+)"
                     r"(?P<rest>\..+)?$")
 _MODEL_SUFFIXES = (".sha256", ".py", ".json", ".code")  # the hash first: removed, it voids
@@ -81,6 +83,8 @@ class Entry:
             return "memo"
         if self.stem.startswith("circuitsim_kernel_lib_"):
             return "kernel library"
+        if self.stem.startswith("c"):
+            return "compiled kernels"
         return "kernels" if self.stem.endswith("_kernels") else "model"
 
 
@@ -98,6 +102,8 @@ def _stem(path: Path) -> str | None:
         return stem if rest == ".py" else None
     if stem.startswith("memo-"):
         return stem if rest == ".json" else None
+    if stem.startswith("c"):
+        return stem if rest == ".so" else None
     return stem if rest in _MODEL_SUFFIXES else None
 
 

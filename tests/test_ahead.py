@@ -39,6 +39,9 @@ def fresh(tmp_path, monkeypatch, write_netlist):
     monkeypatch.setenv("CIRCUITSIM_CACHE", str(tmp_path / "cache"))
     monkeypatch.setenv("CIRCUITSIM_KERNELS", "numba")
     monkeypatch.delenv("CIRCUITSIM_AHEAD", raising=False)
+    # numba's route, as without a C compiler: lending is numba's (the C route compiles a
+    # module whole, test_the_worker_builds_the_c_library_the_caller_loads)
+    monkeypatch.setenv("CIRCUITSIM_CC", "off")
     # the mechanism works on any machine; only its use is limited to two cores or more
     monkeypatch.setattr(ahead, "_cores", lambda: 2)
 
@@ -79,6 +82,30 @@ def test_the_worker_fills_the_cache_the_caller_reads(fresh, monkeypatch):
     monkeypatch.setenv("CIRCUITSIM_KERNELS", "python")
     plain = model.simulate()
     assert with_kernels.success and np.array_equal(with_kernels.y, plain.y)
+
+
+def test_the_worker_builds_the_c_library_the_caller_loads(fresh, monkeypatch):
+    """With a C compiler the worker builds the topology's kernel library; the caller finds
+    it kept, loads it without compiling, and its numbers are the Python route's, to the bit."""
+    from circuitsim.solve import ccode
+
+    monkeypatch.delenv("CIRCUITSIM_CC")
+    if ccode.compiler() is None:
+        pytest.skip("no C compiler on this machine: numba's route, tested above")
+    raw = fresh("c")
+    ahead.expect([raw])
+    assert _wait_done(raw) and ahead._WORKER[0].alive
+    assert ahead._kept(raw, direct_cache())
+    built = set(direct_cache().glob("c*.so"))
+    assert len(built) == 1
+    model = _compiled(raw)
+    assert direct.c_library(direct.kernels(model)) is not None
+    assert set(direct_cache().glob("c*.so")) == built  # loaded, not built again
+    with_kernels = model.simulate()
+    monkeypatch.setenv("CIRCUITSIM_KERNELS", "python")
+    plain = model.simulate()
+    assert with_kernels.success and np.array_equal(with_kernels.y, plain.y)
+    assert np.array_equal(with_kernels.t, plain.t)
 
 
 def direct_cache():

@@ -40,14 +40,21 @@ def _all_files(d):
     return sorted(p for p in [*d.iterdir(), *(d / "__pycache__").glob("*")] if p.is_file())
 
 
+@pytest.mark.parametrize("cc", ["off", "on"])
 def test_every_file_a_run_writes_is_an_entry_and_clear_gives_the_same_numbers(folder,
-                                                                            monkeypatch):
+                                                                            monkeypatch, cc):
     """A run on the compiled kernels fills the folder with a model, its kernel module, the
-    kernels' library and numba's machine code for both: every file belongs to an entry.
-    Cleared, the folder is empty, and the next run derives and compiles again to the bit."""
+    kernels' library and numba's machine code for both -- or, with a C compiler, the
+    module's compiled library instead of numba's code for it: every file belongs to an
+    entry. Cleared, the folder is empty, and the next run derives and compiles again to the
+    bit."""
     pytest.importorskip("numba")
-    from circuitsim.solve import direct
+    from circuitsim.solve import ccode, direct
 
+    if cc == "off":
+        monkeypatch.setenv("CIRCUITSIM_CC", "off")
+    elif ccode.compiler() is None:
+        pytest.skip("no C compiler on this machine: numba's route is the other case")
     # kernels an earlier test loaded in this process, from its own folder, are not reused
     monkeypatch.setattr(direct, "_LOADED", {})
     first = _run(monkeypatch, "numba")
@@ -55,9 +62,11 @@ def test_every_file_a_run_writes_is_an_entry_and_clear_gives_the_same_numbers(fo
     assert other == 0, [p.name for p in _all_files(folder)]
     kinds = {e.kind for e in found}
     assert {"model", "kernels", "kernel library"} <= kinds, kinds
+    assert ("compiled kernels" in kinds) == (cc == "on")
     assert sum(len(e.files) for e in found) == len(_all_files(folder))
-    assert any(f.parent.name == "__pycache__" for e in found if e.kind == "kernels"
-               for f in e.files)  # numba's own files go with their module
+    numba_kept = any(f.parent.name == "__pycache__" for e in found if e.kind == "kernels"
+                     for f in e.files)  # numba's own files go with their module
+    assert numba_kept == (cc == "off")
     assert main(["cache", "clear"]) == 0
     assert _all_files(folder) == []
     monkeypatch.setattr(direct, "_LOADED", {})

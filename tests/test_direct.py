@@ -192,9 +192,14 @@ def test_a_batch_runs_stacked_kernels_to_the_bit(monkeypatch):
 
 
 def _ran_direct(model) -> bool:
-    from circuitsim.solve import direct
+    """The model ran on its kernels -- with a C compiler on the machine, on the library the
+    compiler built of them (``solve/ccode.py``: no kernel shape may fall back to numba
+    unnoticed; test_ccode.py runs numba's route)."""
+    from circuitsim.solve import ccode, direct
 
-    return direct._LOADED.get(model.key) is not None
+    module = direct._LOADED.get(model.key)
+    return module is not None and (ccode.compiler() is None
+                                   or direct.c_library(module) is not None)
 
 
 @pytest.mark.slow

@@ -229,6 +229,7 @@ def _kept(raw, folder: Path) -> bool:
     from circuitsim.compiler.cache import cache_key, load_cached
     from circuitsim.errors import CircuitsimError
     from circuitsim.netlist.load import build
+    from circuitsim.solve import ccode
     from circuitsim.solve.direct import kernel_name
 
     try:
@@ -241,7 +242,7 @@ def _kept(raw, folder: Path) -> bool:
     if hit is None:
         return False
     source = hit[1].get("kernels")
-    return not source or any(
+    return not source or ccode.built(folder, source) or any(
         (folder / "__pycache__").glob(f"{kernel_name(source)}_kernels.*.nbi"))
 
 

@@ -175,11 +175,29 @@ def cfunc(module, name: str) -> Any:
     loaded from numba's kept code, on the first request; then held by the module)."""
     held = module.__dict__.setdefault("_COMPILED", {})
     if name not in held:
+        lib = c_library(module)
+        if lib is not None:
+            from circuitsim.solve.ccode import Entry
+
+            held[name] = Entry(lib, name)
+            return held[name]
         import numba
 
         sig = getattr(module, module.CFUNCS[name])
         held[name] = numba.cfunc(sig, **CFUNC_OPTIONS)(getattr(module, name))
     return held[name]
+
+
+def c_library(module) -> Any | None:
+    """The kernel module compiled by the C compiler (``solve/ccode.py``: the same numbers
+    for a tenth of numba's compile), built once a process and kept beside it; None when
+    numba compiles it."""
+    if "_C_LIBRARY" not in module.__dict__:
+        from circuitsim.solve import ccode
+
+        path = Path(module.__file__)
+        module._C_LIBRARY = ccode.library(path.parent, path.read_text(encoding="utf-8"))
+    return module._C_LIBRARY
 
 
 def _kept(module, name: str) -> bool:
@@ -212,6 +230,10 @@ def _compile_shared(module, model, names: tuple[str, ...]) -> None:
     it in the cache both share, and it is loaded from there (or compiled here when the worker
     had not started on it). A batch's stacked kernels lend the single member's too, for later
     (``_SINGLES``), claimed when asked for."""
+    if c_library(module) is not None:  # the whole module is one compile: nothing to lend
+        for name in names:
+            cfunc(module, name)
+        return
     held = module.__dict__.setdefault("_COMPILED", {})
     lent_before = module.__dict__.setdefault("_LENT", {})
     for name in names:
