@@ -15,6 +15,9 @@ whose equations give the same code share one compile. A topology the caller comp
 is shared too: while it compiles the residual's kernel, the Jacobian's is lent to the worker
 (``lend``, at the head of the queue), and loaded from the cache once the worker has it.
 
+With a C compiler (``solve/ccode.py``) a topology's kernels are one quick build of a
+library, so nothing is lent; the worker still derives the topologies' models ahead.
+
 A plain subprocess with a pipe, not ``multiprocessing``: that would re-run the user's main
 script in the worker. ``CIRCUITSIM_AHEAD=off`` turns it off; it is off without numba, without
 a trusted cache folder, and on a single core.

@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import ast
 import ctypes
+import functools
 import hashlib
 import os
 import shlex
@@ -472,6 +473,7 @@ class _Unit:
         return "\n".join([_PRELUDE.strip(), *arrays, *protos, *body]) + "\n"
 
 
+@functools.lru_cache(maxsize=64)  # 50 ms a large module; the worker's queue asks again and again
 def translate(source: str) -> str | None:
     """The C99 text of a kernel module's entries (``CFUNCS``) and what they call, or None
     when the module uses anything outside the subset."""

@@ -22,7 +22,9 @@ members' parameters. A switching model (events, relations held between
 roots: ``solve/events.py``) of fewer than 100 unknowns has its guards as a compiled root
 function too (a table's rows are stops there as well), which IDA watches as scikit-sundae has
 it watch the Python guards (every root terminal, falling through zero): the run stops at the
-root, to the bit where the Python route stops.
+root, to the bit where the Python route stops. Where a C compiler is found, a kernel module is
+built by it instead (``solve/ccode.py``: the same numbers, a tenth of numba's compile); IDA
+takes that library's functions by address just the same.
 """
 
 from __future__ import annotations
