@@ -348,9 +348,16 @@ class _Function:
         text, kind = self.expr(value)
         if isinstance(target, ast.Name):
             self.bind(target.id, kind)
-            if "malloc(" in text and target.id not in self.allocated:
-                self.allocated.append(target.id)
-            return [f"{indent}{target.id} = {text};"]
+            if "malloc(" not in text:
+                return [f"{indent}{target.id} = {text};"]
+            if target.id in self.allocated:
+                raise Unsupported(f"{target.id} allocated twice")
+            # out of memory: an unrecoverable failure for IDA (a negative flag), not a crash
+            fail = [f"{indent}if ({target.id} == NULL) {{",
+                    *(f"{indent}    free({n});" for n in self.allocated),
+                    f"{indent}    return -1;", f"{indent}}}"]
+            self.allocated.append(target.id)
+            return [f"{indent}{target.id} = {text};", *fail]
         if isinstance(target, ast.Subscript):
             where, kt = self._Subscript(target)
             if kind not in ("d", "i", "b") or (kt == "i" and kind == "d"):
