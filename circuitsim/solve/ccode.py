@@ -131,10 +131,12 @@ class _Function:
         if name in self.params:
             raise Unsupported(f"assignment to argument {name}")
         old = self.locals.get(name)
-        if old is not None and old != kind and {old, kind} != {"i", "b"}:
+        if old is None or old == kind:
+            self.locals[name] = kind
+        elif {old, kind} == {"i", "b"}:  # a truth value and an integer: C's int of both
+            self.locals[name] = "i"
+        else:
             raise Unsupported(f"{name} changes type")
-        self.locals[name] = "i" if old in ("i", "b") and kind in ("i", "b") and old != kind \
-            else kind
 
     # ------------------------------------------------------------------ expressions
     def expr(self, e: ast.expr) -> tuple[str, str]:
