@@ -936,3 +936,34 @@ def test_random_expressions_raise_only_circuitsim_errors(tmp_path, toks, where):
     for spec in net.components:
         for v in spec.values.values():
             assert math.isfinite(v.si(net.global_values()))
+
+
+def test_a_copied_netlist_keeps_its_lines_and_its_independence(write_netlist):
+    """RawNetlist.copy (lines.copy_nodes, which replaced copy.deepcopy for speed) on a netlist
+    with a YAML alias: an error in a component of the copy names the same file line as the
+    original; editing the copy leaves the original as it was."""
+    from circuitsim.netlist import build
+
+    path = write_netlist("""
+        parameters:
+          Rv: 1 ohm
+        components:
+          - {name: V1, type: V, p: a, n: gnd, V: 1 V}
+          - name: R1
+            type: R
+            p: a
+            n: b
+            R: &r 2 ohm
+          - {name: R2, type: R, p: b, n: gnd, R: *r}
+        """)
+    raw = cs.load(path).raw
+    copied = raw.copy()
+    entry = copied.component_entry("R1")
+    entry["R"] = "1 meter"  # a wrong dimension, reported at the line of R1's R
+    with pytest.raises(cs.CircuitsimError) as ei:
+        build(copied)
+    _check(ei.value, path, 9, "R1", "parameter 'R'", "ohm")
+    assert str(raw.component_entry("R1")["R"]) == "2 ohm"
+    build(raw)  # the original still builds
+    assert copied.params.keys() == raw.params.keys()
+    assert copied.comps[0][1] == raw.comps[0][1]  # the entries' locations

@@ -17,3 +17,48 @@ def yaml_line(path: str, node: Any, key: Any = None, index: int | None = None) -
         return SourceLoc(path, node.lc.line + 1)
     except (AttributeError, KeyError, TypeError, IndexError):
         return SourceLoc(path, 0)
+
+
+#: ruamel's attribute holding a node's line and column (``node.lc``)
+_LINE_COL = "_yaml_line_col"
+_ATOMS = (str, int, float, bool, type(None), SourceLoc)  # ruamel's scalars subclass these
+
+
+def copy_nodes(value: Any, memo: dict[int, Any] | None = None) -> Any:
+    """A deep copy of parsed YAML (and the tuples, sets and frozen dataclasses holding it)
+    that keeps each node's lines but not its comments or formatting.
+
+    ``copy.deepcopy`` copies a ruamel sequence's comment attributes once per item, which made
+    copying a netlist for each of a diagnosis's patches a few seconds of a record's minute.
+    Objects met twice (YAML aliases) are copied once, as deepcopy does; the line records are
+    shared, since nothing writes them after parsing."""
+    import copy
+    import dataclasses
+
+    memo = {} if memo is None else memo
+    if isinstance(value, _ATOMS):
+        return value
+    known = memo.get(id(value))
+    if known is not None:
+        return known
+    if isinstance(value, dict):
+        out: Any = type(value)()
+        memo[id(value)] = out
+        for k in value:
+            out[k] = copy_nodes(value[k], memo)
+    elif isinstance(value, list):
+        out = type(value)()
+        memo[id(value)] = out
+        out.extend(copy_nodes(x, memo) for x in value)
+    elif type(value) is tuple:
+        return tuple(copy_nodes(x, memo) for x in value)
+    elif type(value) in (set, frozenset):
+        return type(value)(value)  # members are hashable, hence immutable here
+    elif dataclasses.is_dataclass(value) and not isinstance(value, type):
+        return dataclasses.replace(value, **{f.name: copy_nodes(getattr(value, f.name), memo)
+                                             for f in dataclasses.fields(value) if f.init})
+    else:
+        return copy.deepcopy(value, memo)
+    if hasattr(value, _LINE_COL):
+        setattr(out, _LINE_COL, getattr(value, _LINE_COL))
+    return out

@@ -34,6 +34,7 @@ from circuitsim.component import (
 from circuitsim.errors import NetlistError, ParameterError, SourceLoc
 from circuitsim.files import atomic_write
 from circuitsim.netlist import expr as ex
+from circuitsim.netlist.lines import copy_nodes
 from circuitsim.netlist.lines import yaml_line as _loc
 from circuitsim.netlist.pwlfile import pwl_points
 from circuitsim.netlist.subckt import flatten, read_subckts
@@ -374,9 +375,8 @@ class RawNetlist:
     patch_parts: set[str] = field(default_factory=set)
 
     def copy(self) -> RawNetlist:
-        import copy
-
-        return copy.deepcopy(self)
+        """A deep copy that keeps the lines of every entry (``lines.copy_nodes``)."""
+        return copy_nodes(self)
 
     def component_entry(self, name: str) -> dict:
         for entry, _, _ in self.comps:
