@@ -26,9 +26,10 @@ Growth exponents are least-squares slopes of log(cost) against log(N).
 
 With ``--compiled`` (numba installed: ``pip install ".[fast]"``) each size is also solved on the
 compiled route (``CIRCUITSIM_KERNELS=numba``, ``circuitsim/solve/direct.py``): the first such
-solve compiles the kernels (CPU seconds, column "kernels"), then both routes are timed in turns,
-minimum of three each in CPU seconds (both are single-threaded; the machine is shared), and the
-table gives the ratio compiled / Python and whether the two results are the same to the bit
+solve compiles the kernels (CPU seconds, column "kernels"; by the C compiler where one
+exists, ``solve/ccode.py``, else by numba; ``CIRCUITSIM_CC=off`` forces numba), then both
+routes are timed in turns, minimum of three each in CPU seconds (both are single-threaded;
+the machine is shared), and the table gives the ratio compiled / Python and whether the two results are the same to the bit
 (times, states and derivatives)::
 
     python benchmarks/scaling.py --compiled --family rc --sizes 300
