@@ -58,8 +58,14 @@ COHERENCE_SEGMENTS = 8
 SPREAD_BAND = (0.25, 0.75)
 
 
-def remaining(setup: Setup, state: ModelState) -> dict[str, Any]:
-    """The structure left in the final model's residual, per probe, in plain terms."""
+def remaining(setup: Setup, state: ModelState, stand_in: bool = False) -> dict[str, Any]:
+    """The structure left in the final model's residual, per probe, in plain terms.
+
+    ``stand_in``: a catalog effect fitted part of this residual significantly (its ΔBIC on
+    the prewhitened residual, under the same noise model) and was then rejected as a stand-in
+    for a cause outside the catalog. The residual is then no probe's own coloured noise, and
+    ``_own_noise`` does not excuse it: that test, a coherence between probes, only asks
+    whether a slow wander could be the sensor's, which the stand-in's fit has answered."""
     whiten = whiteners_of(state.fit.residuals, setup.probes)
     shafts = shaft_frequencies(state)
     probes, resolved = {}, []
@@ -87,7 +93,7 @@ def remaining(setup: Setup, state: ModelState) -> dict[str, Any]:
             entry["spread"] = spread
         if share >= MIN_SHARE or pval <= 1e-3:
             probes[p] = entry
-    coloured = _own_noise(setup, state, probes)
+    coloured = {} if stand_in else _own_noise(setup, state, probes)
     for p in coloured:
         del probes[p]
     structure = bool(probes)

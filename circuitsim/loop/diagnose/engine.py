@@ -853,6 +853,20 @@ def _merge_refinements(accepted: list[Accepted]) -> list[Accepted]:
     return out
 
 
+def _undetermined(candidate: Any, final: Any) -> dict[str, str]:
+    """A caveat when a parameter that shapes the effect (a time constant, a speed) has a
+    standard error larger than its value: the record fixes the effect's size but not its
+    form, and the fitted shape is one of many that fit as well. Said, not a verdict: the
+    effect's evidence (its ΔBIC) does not depend on that value."""
+    loose = [(n, final.estimate[n], final.stderr[n]) for n in candidate.shape
+             if n in final.estimate and not final.stderr[n] <= abs(final.estimate[n])]
+    if not loose:
+        return {}
+    words = ", ".join(f"{n} = {v:.3g} ± {se:.3g}" for n, v, se in loose)
+    return {"undetermined": f"the record does not determine its shape ({words}): "
+                            f"another shape may fit as well"}
+
+
 def report(setup: Setup, state0: ModelState, state: ModelState, log: dict[str, Any],
            clock: dict[str, float]) -> Diagnosis:
     """Stage 7: the Diagnosis, with the remaining structure described (stage 6)."""
@@ -873,7 +887,8 @@ def report(setup: Setup, state0: ModelState, state: ModelState, log: dict[str, A
              "sse_after": trial.sse_after if trial else None,
              "correction_of_declared_term": choice.correction,
              "stability": (log.get("stability", {}).get(c.key).as_dict()
-                           if c.key in log.get("stability", {}) else None)})
+                           if c.key in log.get("stability", {}) else None),
+             **_undetermined(c, final)})
         (corrections if choice.correction else accepted).append(entry)
     accepted = _merge_refinements(accepted)
     for choice in state.chosen:
@@ -882,7 +897,7 @@ def report(setup: Setup, state0: ModelState, state: ModelState, log: dict[str, A
             log["indistinct"].append(
                 f"{choice.candidate.key} is the same circuit as {', '.join(sorted(set(twins)))}"
                 f" (the elements carry the same current): the data cannot tell them apart")
-    rest = remaining(setup, state)
+    rest = remaining(setup, state, stand_in="stand_ins" in log)
     if "stand_ins" in log:  # what a catalog effect would have explained of it
         rest["note"] += f" ({log['stand_ins']})"
         rest["stand_ins"] = log["stand_ins"]

@@ -107,9 +107,11 @@ class Diagnosis:
 
 
 def _caveat(a: Accepted) -> str:
-    """An accepted effect's law test when its bend is significant but no verdict."""
+    """An accepted effect's caveats: its law test when its bend is significant but no
+    verdict, a shape the record does not determine."""
     law = (a.evidence.get("stability") or {}).get("law") or {}
-    return f" ({law['caveat']})" if law.get("caveat") else ""
+    notes = [law.get("caveat"), a.evidence.get("undetermined")]
+    return "".join(f" ({n})" for n in notes if n)
 
 
 def _clean(obj: Any) -> Any:
