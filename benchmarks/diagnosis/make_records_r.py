@@ -321,51 +321,10 @@ def record_specs() -> list[dict[str, Any]]:
 
 # ---------------------------------------------------------------------- sample times
 
-def logger_times(rng: np.random.Generator, fs: float, duration: float, drops: int
-                 ) -> tuple[np.ndarray, np.ndarray]:
-    """A logger's times [s] and the times it dropped [s]: intervals of 0.6 + 0.8 Beta(3, 3)
-    [1] times the mean 1/fs [Hz] (0.6-1.4 times it), from 0 to at most ``duration`` [s],
-    rounded to 1 us; ``drops`` interior samples removed, at least seven apart."""
-    gaps = (0.6 + 0.8 * rng.beta(3.0, 3.0, int(1.2 * duration * fs))) / fs
-    t = np.round(np.concatenate([[0.0], np.cumsum(gaps)]) * 1e6) / 1e6
-    t = t[t <= duration]
-    pick = np.sort(rng.choice(np.arange(7, t.size - 7, 7), drops, replace=False))
-    return np.delete(t, pick), t[pick]
-
-
-def _tidy(t: np.ndarray) -> np.ndarray:
-    """The times exactly as the CSV holds them (10 significant digits) [s]."""
-    return np.array([float(f"{x:.10g}") for x in t])
-
-
 def times(s: dict[str, Any]) -> np.ndarray:
     """The record's sample times [s] (even, or uneven from its seed), once; described in
-    ``s["timestamps"]``."""
-    if "t" in s:
-        return s["t"]
-    fs, dur = sr.REGIMES[s["regime"]]
-    rng = np.random.default_rng([s["seed"], 17])
-    if not s["uneven"]:
-        t = sr.grid(s["regime"])
-        s["timestamps"] = f"even: k/fs, fs = {fs:g} Hz"
-    elif s["regime"] == "fast":
-        jitter = round(float(rng.uniform(*JITTER)), 3)
-        t = recordkit.jittered_times(rng, fs, dur, jitter)
-        s["timestamps"] = (
-            f"jittered: the nominal {fs / 1e3:g} kHz grid k/fs, every sample time but the "
-            f"first moved by a uniform random jitter within +-{jitter:.1%} of the "
-            f"{1e6 / fs:g} us interval (the last one only earlier), rounded to 1 ns; "
-            f"intervals {np.diff(t).min() * 1e6:.2f}-{np.diff(t).max() * 1e6:.2f} us")
-    else:
-        drops = int(rng.integers(DROPS[0], DROPS[1] + 1))
-        t, gone = logger_times(rng, fs, dur, drops)
-        s["timestamps"] = (
-            f"jittered: a data logger's irregular intervals, 0.6 + 0.8 Beta(3, 3) times the "
-            f"mean {1e3 / fs:.3g} ms, from 0 to {t[-1]:.4f} s, rounded to 1 us; {drops} "
-            "samples dropped (at " + ", ".join(f"{x:.4f}" for x in gone)
-            + f" s); intervals {np.diff(t).min() * 1e3:.3f}-{np.diff(t).max() * 1e3:.3f} ms")
-    s["t"] = _tidy(t)
-    return s["t"]
+    ``s["timestamps"]`` (``recordkit.record_times``)."""
+    return recordkit.record_times(s, sr.REGIMES, sr.grid, 17, JITTER, DROPS)
 
 
 # ---------------------------------------------------------------------- signatures

@@ -86,6 +86,60 @@ def jittered_times(rng: np.random.Generator, fs: float, duration: float, jitter:
     return t
 
 
+def logger_times(rng: np.random.Generator, fs: float, duration: float, drops: int
+                 ) -> tuple[np.ndarray, np.ndarray]:
+    """A logger's times [s] and the times it dropped [s]: intervals of 0.6 + 0.8 Beta(3, 3)
+    [1] times the mean 1/fs [Hz] (0.6-1.4 times it), from 0 to at most ``duration`` [s],
+    rounded to 1 us; ``drops`` interior samples removed, at least seven apart (as motor Q's
+    generator writes it; motor R's uses this one)."""
+    gaps = (0.6 + 0.8 * rng.beta(3.0, 3.0, int(1.2 * duration * fs))) / fs
+    t = np.round(np.concatenate([[0.0], np.cumsum(gaps)]) * 1e6) / 1e6
+    t = t[t <= duration]
+    pick = np.sort(rng.choice(np.arange(7, t.size - 7, 7), drops, replace=False))
+    return np.delete(t, pick), t[pick]
+
+
+def tidy_times(t: np.ndarray) -> np.ndarray:
+    """The times exactly as the CSV holds them (10 significant digits) [s]."""
+    return np.array([float(f"{x:.10g}") for x in t])
+
+
+def record_times(s: dict[str, Any], regimes: Mapping[str, tuple[float, float]],
+                 grid: Callable[[str], np.ndarray], salt: int,
+                 jitter_range: tuple[float, float], drop_range: tuple[int, int]
+                 ) -> np.ndarray:
+    """Record ``s``'s sample times [s], once (kept in ``s["t"]``, described in
+    ``s["timestamps"]``): the regime's even ``grid``; or, uneven, from the seed and ``salt``,
+    a jittered fast grid (a jitter drawn in ``jitter_range`` of the interval) or a logger's
+    slow times with a count drawn in ``drop_range`` dropped. ``regimes``: (fs [Hz],
+    duration [s]) per regime."""
+    if "t" in s:
+        return s["t"]
+    fs, dur = regimes[s["regime"]]
+    rng = np.random.default_rng([s["seed"], salt])
+    if not s["uneven"]:
+        t = grid(s["regime"])
+        s["timestamps"] = f"even: k/fs, fs = {fs:g} Hz"
+    elif s["regime"] == "fast":
+        jitter = round(float(rng.uniform(*jitter_range)), 3)
+        t = jittered_times(rng, fs, dur, jitter)
+        s["timestamps"] = (
+            f"jittered: the nominal {fs / 1e3:g} kHz grid k/fs, every sample time but the "
+            f"first moved by a uniform random jitter within +-{jitter:.1%} of the "
+            f"{1e6 / fs:g} us interval (the last one only earlier), rounded to 1 ns; "
+            f"intervals {np.diff(t).min() * 1e6:.2f}-{np.diff(t).max() * 1e6:.2f} us")
+    else:
+        drops = int(rng.integers(drop_range[0], drop_range[1] + 1))
+        t, gone = logger_times(rng, fs, dur, drops)
+        s["timestamps"] = (
+            f"jittered: a data logger's irregular intervals, 0.6 + 0.8 Beta(3, 3) times the "
+            f"mean {1e3 / fs:.3g} ms, from 0 to {t[-1]:.4f} s, rounded to 1 us; {drops} "
+            "samples dropped (at " + ", ".join(f"{x:.4f}" for x in gone)
+            + f" s); intervals {np.diff(t).min() * 1e3:.3f}-{np.diff(t).max() * 1e3:.3f} ms")
+    s["t"] = tidy_times(t)
+    return s["t"]
+
+
 def noise_text(ns: Mapping[str, Mapping[str, Any]]) -> str:
     """The record's noise in words, per probe (white, AR(1), 1/f, ADC step)."""
     words = []
