@@ -363,45 +363,11 @@ ACROSS = {"rotor": ("carriage", {"coul": N, "offset": N, "visc": N * N}),
           "carriage": ("pulley", {"coul": 1.0, "offset": 1.0, "visc": 1.0, "cog": 1.0})}
 
 
-def moved(frag: dict, target: str) -> tuple[str, list[dict]] | None:
-    """The other side of the belt, and the columns' fx of the effect ``frag`` moved there at
-    its equivalent size: one for a scalar effect, two for an angle-locked one (a sine and a
-    cosine, so that the phase is fitted); None when the effect has no equal there."""
-    other, factor = ACROSS[target]
-    (kind, where), = frag.items()
-    if kind not in factor:
-        return None
-    value = where[target]
-    if kind != "cog":
-        return other, [{kind: {other: value * factor[kind]}}]
-    return other, [{kind: {other: [(k, math.hypot(a, b) * c, math.hypot(a, b) * d)
-                                   for k, a, b in value]}} for c, d in ((1.0, 0.0), (0.0, 1.0))]
-
-
-def location(s: dict[str, Any]) -> list[dict[str, Any]]:
-    """For each truth effect on a shaft, the distance [white sigma] of its own clean imprint,
-    run alone on the record's times and regime, from the same effect at its equivalent size
-    on the other side of the belt, best-scaled; and that imprint's norm [white sigma]."""
-    regime, t, imp = s["regime"], times(s), imprints(s)
-    out = []
-    for frag, e in s["parts"]:
-        if e["target"] not in ACROSS or len(frag) != 1:
-            continue
-        there = moved(frag, e["target"])
-        if there is None:
-            continue
-        other, fxs = there
-        cols = np.column_stack([imp.imprint(regime, sim(regime, t, fx)) for fx in fxs])
-        y = imp.imprint(regime, sim(regime, t, frag))
-        out.append({"effect": e["effect"], "target": e["target"], "other": other,
-                    "sigma": recordkit.left(y, cols), "imprint_sigma": float(np.linalg.norm(y))})
-    return out
-
-
 def _location_entry(s: dict[str, Any]) -> dict[str, Any]:
-    """A catalog or two-effect record's ``location_sigma`` (``location``), after a marginal
-    record's scaling (its parts are then the scaled ones)."""
-    return {"location_sigma": location(s)} if s["class"] in ("catalog", "two") else {}
+    """A catalog or two-effect record's ``location_sigma`` across the belt
+    (``recordkit.location_entry``), after a marginal record's scaling (its parts are then
+    the scaled ones)."""
+    return recordkit.location_entry(s, ACROSS, times(s), imprints(s), sim)
 
 
 #: the plumbing every later set shares (recordkit.Plumbing): truth entries, marginal

@@ -367,6 +367,52 @@ class Plumbing:
         return entry
 
 
+#: across a compliant element: shaft -> (the shaft an effect on it is compared with, the
+#: factor its size takes there per simulator key)
+Across = Mapping[str, tuple[str, Mapping[str, float]]]
+
+
+def moved(frag: dict, target: str, across: Across) -> tuple[str, list[dict]] | None:
+    """The other side of ``across`` from ``target``, and the columns' fx of the effect
+    ``frag`` moved there at its equivalent size: one for a scalar effect, two for an
+    angle-locked one (a sine and a cosine, so that the phase is fitted); None when the
+    effect has no equal there."""
+    other, factor = across[target]
+    (kind, where), = frag.items()
+    if kind not in factor:
+        return None
+    value = where[target]
+    if kind != "cog":
+        return other, [{kind: {other: value * factor[kind]}}]
+    return other, [{kind: {other: [(k, math.hypot(a, b) * c, math.hypot(a, b) * d)
+                                   for k, a, b in value]}} for c, d in ((1.0, 0.0), (0.0, 1.0))]
+
+
+def location_entry(s: dict[str, Any], across: Across, t: np.ndarray, imp: Imprints,
+                   sim: Callable[[str, np.ndarray, dict], Mapping[str, np.ndarray]]
+                   ) -> dict[str, Any]:
+    """A catalog or two-effect record's ``location_sigma``: for each truth effect on a
+    shaft, the distance [white sigma] of its own clean imprint, run alone (``sim``) on the
+    record's times ``t`` and regime, from the same effect at its equivalent size on the other
+    side of ``across``, best-scaled; and that imprint's norm [white sigma]. Empty for other
+    classes."""
+    if s["class"] not in ("catalog", "two"):
+        return {}
+    regime, out = s["regime"], []
+    for frag, e in s["parts"]:
+        if e["target"] not in across or len(frag) != 1:
+            continue
+        there = moved(frag, e["target"], across)
+        if there is None:
+            continue
+        other, fxs = there
+        cols = np.column_stack([imp.imprint(regime, sim(regime, t, fx)) for fx in fxs])
+        y = imp.imprint(regime, sim(regime, t, frag))
+        out.append({"effect": e["effect"], "target": e["target"], "other": other,
+                    "sigma": left(y, cols), "imprint_sigma": float(np.linalg.norm(y))})
+    return {"location_sigma": out}
+
+
 def left(y: np.ndarray, x: np.ndarray) -> float:
     """What least squares on the columns of ``x`` leaves of ``y`` (the residual's norm)."""
     coef, *_ = np.linalg.lstsq(x, y, rcond=None)
