@@ -133,10 +133,11 @@ def diagnose(netlist, record, free: Sequence[str] = (), *, probes: Sequence[str]
                                  progress)
     clock = {"fit_declared": time.perf_counter() - start}
     state, log = search(setup, state0, screen_top, clock)
-    state = _neighbour_orders(setup, state, log)
     state = _trades(setup, state0, state, log)
     state = _stand_ins(setup, state0, state, log)
     state = _unstable(setup, state0, state, log)
+    # last: only the harmonics that stay are named, and a stand-in's orders cost nothing
+    state = _neighbour_orders(setup, state, log)
     # what the search spent outside screening and refits: the backward step and swaps
     clock["revise"] = time.perf_counter() - start - sum(clock.values())
     clock["total"] = time.perf_counter() - start
@@ -638,9 +639,12 @@ def _neighbour_orders(setup: Setup, state: ModelState, log: dict[str, Any]) -> M
     proposed; where the shaft's angle is travelled slowly, or back and forth, the next order
     may fit as well (fresh17's z09: a cogging of order 12 was named 11, their imprints
     differing by 3 % of the noise) or better. A neighbour that lowers the BIC by the margin
-    through both noise filters (as a swap must) replaces the order and its own neighbours are
-    tried in turn; one within the margin of the order kept is reported as indistinct from
-    it (the ties of an order left behind are not)."""
+    through both noise filters (as a swap must), and whose parameters are constants of the
+    record (``stability``, as the order it replaces passed), replaces the order, and its own
+    neighbours are tried in turn; one within the margin of the order kept is reported as
+    indistinct from it (the ties of an order left behind are not). Run on the final model,
+    after the stand-ins are out: r11's three cogging orders, stand-ins all, cost 10 s of
+    neighbours' refits before."""
     for i in range(len(state.chosen)):
         tried: set[int] = set()
         while True:
@@ -665,10 +669,11 @@ def _neighbour_orders(setup: Setup, state: ModelState, log: dict[str, Any]) -> M
                     better = (trial, gain)
                 elif gain < BIC_MARGIN:
                     ties.append((other.key, gain))
-            if better is None:
+            taken = None if better is None else _take_order(setup, state, i, better[0], log)
+            if taken is None:
                 _say_ties(choice.candidate.key, ties, log)
                 break
-            state = _take_order(setup, state, i, better[0], log)
+            state = taken
     return state
 
 
@@ -722,17 +727,27 @@ def _with_order(setup: Setup, state: ModelState, i: int, other: Any) -> ModelSta
 
 
 def _take_order(setup: Setup, state: ModelState, i: int, new: ModelState,
-                log: dict[str, Any]) -> ModelState:
-    """``new`` (the ``i``-th harmonic at another order) replaces ``state``; its evidence is
-    judged against the model without it, as an acceptance's is."""
+                log: dict[str, Any]) -> ModelState | None:
+    """``new`` (the ``i``-th harmonic at another order) in place of ``state``, its evidence
+    judged against the model without it, as an acceptance's is, and its stability as the
+    stand-in stage judges it; None (``state`` stays) when that model cannot be refitted or
+    the new order's parameters are not constants of the record."""
     old, other = state.chosen[i].candidate, new.chosen[i].candidate
+    reduced = _without(setup, new, [c for j, c in enumerate(new.chosen) if j != i])
+    if reduced is None:
+        return None
+    trial = judge(setup, reduced, Trial((other,), new.fit))
+    verdict = stability(setup, new, other, trial.gain) if trial.gain > 0 else None
+    if verdict is not None and verdict.unstable:
+        setup.log(f"  {other.key} fits better but is unstable: {verdict.why()}")
+        return None
     setup.log(f"revised: {other.key} replaces {old.key}")
     log["rejected"].append({"effect": old.effect, "target": old.target,
                             "reason": f"replaced by its neighbouring order {other.key}, "
                                       f"which fits better"})
-    reduced = _without(setup, new, [c for j, c in enumerate(new.chosen) if j != i])
-    log["trials"][other.key] = log["trials"].get(old.key) if reduced is None else judge(
-        setup, reduced, Trial((other,), new.fit))
+    log["trials"][other.key] = trial
+    if verdict is not None:
+        log.setdefault("stability", {})[other.key] = verdict
     return new
 
 
