@@ -541,11 +541,7 @@ def _swap(setup: Setup, state: ModelState, log: dict[str, Any]) -> ModelState:
         if trial is None:
             continue
         extra = len(trial.free) - len(state.free)  # parameters the swap adds (or removes)
-        # the two models are not nested: a swap must win through both noise filters (its own
-        # alone favours the model whose residual that filter was learnt on)
-        gain = max(delta_bic(trial.whitened(setup, w), state.whitened(setup, w), setup.n,
-                             extra, setup.probes)
-                   for w in (whiteners_of(trial.fit.residuals, setup.probes), own))
+        gain = _swap_gain(setup, state, trial, extra, own)
         gains[" + ".join(c.candidate.key for c in combo)] = gain
         setup.log("  swap " + " + ".join(c.candidate.key for c in combo) + f": ΔBIC {gain:.1f}")
         # every swap is measured against the model as it stands: comparing swaps with one
@@ -578,6 +574,16 @@ def _swap(setup: Setup, state: ModelState, log: dict[str, Any]) -> ModelState:
                 if a.candidates[0].key == c.candidate.key)
     best.model = compile_raw(best.raw)
     return best
+
+
+def _swap_gain(setup: Setup, state: ModelState, trial: ModelState, extra: int,
+               own: Mapping[str, Any]) -> float:
+    """The BIC change from ``state`` to ``trial`` (``extra`` more parameters) through both
+    noise filters, the worse of the two: the models are not nested, and a filter learnt on
+    one model's residual alone favours that model (``own``: ``state``'s filters)."""
+    return max(delta_bic(trial.whitened(setup, w), state.whitened(setup, w), setup.n, extra,
+                         setup.probes)
+               for w in (whiteners_of(trial.fit.residuals, setup.probes), own))
 
 
 def _swap_combos(state: ModelState, log: dict[str, Any]) -> list[tuple[Choice, ...]]:
@@ -654,15 +660,13 @@ def _neighbour_orders(setup: Setup, state: ModelState, log: dict[str, Any]) -> M
                 break
             tried.add(int(k))
             better, ties = None, []
+            own = whiteners_of(state.fit.residuals, setup.probes)
             for other in _neighbours(state, choice.candidate, tried):
                 tried.add(int(other.fixed["order"]))
                 trial = _with_order(setup, state, i, other)
                 if trial is None:
                     continue
-                gain = max(delta_bic(trial.whitened(setup, w), state.whitened(setup, w),
-                                     setup.n, 0, setup.probes)
-                           for w in (whiteners_of(trial.fit.residuals, setup.probes),
-                                     whiteners_of(state.fit.residuals, setup.probes)))
+                gain = _swap_gain(setup, state, trial, 0, own)
                 setup.log(f"  order {other.key} in place of {choice.candidate.key}: ΔBIC "
                           f"{gain:.1f}")
                 if gain < -BIC_MARGIN and (better is None or gain < better[1]):

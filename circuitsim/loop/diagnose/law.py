@@ -89,9 +89,9 @@ LAW_RANGE = 0.1
 #: or a moving average over a window 1/6, a second-order stage of damping zeta
 #: 1/2 - 1/(4 zeta^2) (and c3 = 1/6 where that vanishes, at zeta = 0.707). The catalog
 #: reads the delay through a Padé all-pass (``effects._probe_delay``), e^{-s tau} times
-#: (1 - (s tau)^3/12 ...): against it a pure delay has c3 = 1/12 (``PURE_DELAY_BENDS``), and it is
-#: the departure from that which is judged. A delay whose
-#: significant bend has a coefficient |c_k| >= LAW_RANGE, each judged where it is significant
+#: (1 - (s tau)^3/12 ...): against it a pure delay has c3 = 1/12 (``PURE_DELAY_BENDS``),
+#: and it is the departure from that which is judged. A delay whose significant bend has a
+#: coefficient at least LAW_RANGE from a pure delay's, each judged where it is significant
 #: beside the other (``_departure``), is no delay. Written from these series on 2026-11-28,
 #: with the benchmark's four records in hand whose delay stood in for a filter (k12's LC
 #: filter gave c2 = -4.5, k14's tachometer lag 0.31, v11's sensor bandwidth -0.55, x12's
@@ -367,9 +367,8 @@ def law_test(setup: Setup, state: ModelState, own: Columns, bend: Bend) -> LawTe
     removed, bends = _removed(setup, state.fit.residuals, own, bend.bend)
     level = tuple(float(np.mean(np.square(np.asarray(state.fit.residuals[p], float)
                                           / setup.weights[p]))) for p in setup.probes)
-    spread = spread_of(bends, bend.shapes)
-    if bend.scales and dbic < -BIC_MARGIN:
-        spread = _departure(setup, state, own, bend, bends)
+    spread = (_departure(setup, state, own, bend, bends) if bend.scales and dbic < -BIC_MARGIN
+              else spread_of(bends, bend.shapes))
     return LawTest(dbic, gain, bend.words, removed, bends, level, bend.relative, spread,
                    bend.ranged)
 
@@ -377,12 +376,12 @@ def law_test(setup: Setup, state: ModelState, own: Columns, bend: Bend) -> LawTe
 def _departure(setup: Setup, state: ModelState, own: Columns, bend: Bend,
                bends: Sequence[float]) -> float:
     """A delay's departure from a delay (``LAW_RANGE``): the largest |c_k - null_k|, c_k =
-    bend_k / tau^k and null_k a pure delay's (``PURE_DELAY_BENDS``), among the bends that pass the
-    BIC margin beside the effect's own column and the other bends [-]; 0 when none does on
-    its own (two collinear derivatives: their separate sizes mean nothing)."""
+    bend_k / tau^k and null_k a pure delay's (``PURE_DELAY_BENDS``), among the bends that
+    pass the BIC margin beside the effect's own column and the other bends [-]; 0 when none
+    does on its own (two collinear derivatives: their separate sizes mean nothing)."""
     out = 0.0
-    for k, (col, b, scale, null) in enumerate(zip(bend.bend, bends, bend.scales, PURE_DELAY_BENDS,
-                                                  strict=True)):
+    terms = zip(bend.bend, bends, bend.scales, PURE_DELAY_BENDS, strict=True)
+    for k, (col, b, scale, null) in enumerate(terms):
         others = [c for j, c in enumerate(bend.bend) if j != k]
         dbic, _ = added_test(state.fit.residuals, [*own, *others], [col], setup.weights,
                              setup.probes)
