@@ -17,14 +17,16 @@ of the same topology does no symbolic work.
 from __future__ import annotations
 
 import ast
+import functools
 import re
 import sys
 from typing import Any
 
 from circuitsim.solve.kernel_lib import BAND_ABS, BAND_REL, GUARDED, KERNEL_LIB
 
-CODEGEN_VERSION = "28"  # 24-25: the root function (25: with tables); 26: batches with tables;
-# 27: relations' modes numbered in canonical order; 28: an inert term's function skipped
+CODEGEN_VERSION = "29"  # 24-25: the root function (25: with tables); 26: batches with tables;
+# 27: relations' modes numbered in canonical order; 28: an inert term's function skipped;
+# 29: sums and products inside functions printed directly
 
 # [unknowns] from here on the residual's linear part is a sparse matrix product (measured on
 # RLC ladders: 5x slower than the scalar code at 16 unknowns, 2x at 50, equal at 100) ...
@@ -38,7 +40,27 @@ def _printers():
     from sympy.printing.numpy import NumPyPrinter
     from sympy.printing.pycode import PythonCodePrinter
 
-    class Scalar(PythonCodePrinter):
+    class Direct:
+        """Sums, products and integer powers inside a function's arguments or a piecewise
+        branch written as ``_print`` writes them at the top: sympy's own printers sort a
+        sum's terms and test a product's signs first, which was most of a compile's time
+        (a model's probes, printed for the vectorised route, are mostly piecewise)."""
+
+        def _print_Add(self, e, order=None):
+            return "(" + " + ".join(map(self._print, e.args)) + ")"
+
+        def _print_Mul(self, e):
+            return "(" + "*".join(map(self._print, e.args)) + ")"
+
+        def _print_Pow(self, e, rational=False):
+            if e.exp.is_Integer and e.exp >= 0:  # numpy refuses an integer's negative power
+                return f"({self._print(e.base)})**({int(e.exp)})"
+            return super()._print_Pow(e, rational=rational)
+
+        def _print_Float(self, e):
+            return repr(float(e))
+
+    class Scalar(Direct, PythonCodePrinter):
         guard = "inline"  # an inert term's function, see _term
 
         def _print_Lookup(self, e):
@@ -51,7 +73,7 @@ def _printers():
             x, per = (self._print(a) for a in e.args)
             return f"(({x}) % ({per}))"
 
-    class Vector(NumPyPrinter):
+    class Vector(Direct, NumPyPrinter):
         def _print_Lookup(self, e):
             return f"TV[{int(e.args[0])}]({self._print(e.args[1])})"
 
@@ -212,8 +234,12 @@ def _derivatives(F: list, Y: list, YP: list, t) -> tuple[dict, dict, list]:
     return fy, fyp, [sp.diff(f, t) for f in F]
 
 
+@functools.lru_cache(maxsize=1 << 15)
 def _term_diff(a, s):
-    """d a / d s, directly for s and c*s with c free of s (most terms of a network)."""
+    """d a / d s, directly for s and c*s with c free of s (most terms of a network).
+    Remembered: a diagnosis compiles dozens of topologies that share most of their terms (the
+    same patches on the same circuit), and sympy's ``diff`` of a function's term -- a
+    friction's tanh, a harmonic's sine, a piecewise law -- was a third of a compile."""
     import sympy as sp
 
     if a == s:
