@@ -60,6 +60,9 @@ def _printers():
         def _print_Float(self, e):
             return repr(float(e))
 
+        def _print_Symbol(self, e):
+            return _renamed(e, self)
+
     class Scalar(Direct, PythonCodePrinter):
         guard = "inline"  # an inert term's function, see _term
 
@@ -126,14 +129,12 @@ def _block(exprs: list, printer, indent: str, assign: list[str], op: str = "=") 
     expressions (functions, tables, fractional powers) computed once. Polynomials in the
     unknowns and parameters -- nearly every equation of a network -- share too little for
     the search to pay (it was most of the compile time of large circuits)."""
-    import sympy as sp
 
     heavy = [k for k, e in enumerate(exprs) if not _polynomial(e)]
     lines = []
     reduced = list(exprs)
     if heavy:
-        subs, red = sp.cse([exprs[k] for k in heavy], symbols=sp.numbered_symbols("c"),
-                           order="none")
+        subs, red = _cse(tuple(exprs[k] for k in heavy))
         for sym, val in subs:
             lines.append(f"{indent}{sym} = {_print(val, printer)}")
         for k, e in zip(heavy, red, strict=True):
@@ -141,6 +142,15 @@ def _block(exprs: list, printer, indent: str, assign: list[str], op: str = "=") 
     for target, e in zip(assign, reduced, strict=True):
         lines.append(f"{indent}{target} {op} {_print(e, printer)}")
     return lines
+
+
+@functools.lru_cache(maxsize=256)
+def _cse(exprs: tuple) -> tuple[list, list]:
+    """sympy's common subexpressions of ``exprs``, remembered: the kernels repeat the scalar
+    code's residual and Jacobian, and a diagnosis's topologies share most of them."""
+    import sympy as sp
+
+    return sp.cse(list(exprs), symbols=sp.numbered_symbols("c"), order="none")
 
 
 def _polynomial(e) -> bool:
@@ -159,7 +169,7 @@ def _print(e, printer) -> str:
     directly (sympy's printers cost ~0.1-0.2 ms an expression, which dominated code
     generation at a few thousand unknowns); everything else through ``printer``."""
     if e.is_Symbol:
-        return e.name
+        return _renamed(e, printer)
     if e.is_Integer:
         return str(int(e))
     if e.is_Float:
@@ -174,6 +184,13 @@ def _print(e, printer) -> str:
 
 
 _PARAM = re.compile(r"p\d+")
+
+
+def _renamed(e, printer) -> str:
+    """A symbol's name in the generated code: through the printer's ``names`` when it has
+    them (the probes, printed without a substitution of every expression first)."""
+    names = getattr(printer, "names", None)
+    return (names.get(e, e) if names else e).name
 
 
 def _term(a, printer) -> str:
@@ -315,8 +332,9 @@ def _outputs(dae, ren: dict) -> tuple[list[str], list]:
     from circuitsim.component import as_expr
 
     names_out = list(dae.probes) + sorted(dae.exports)
-    obs = [as_expr(dae.probes[k] if k in dae.probes else dae.exports[k]).xreplace(ren)
-           for k in names_out]
+    # not substituted: the printer renames (``_renamed``); xreplace rebuilt every piecewise
+    # probe, a third of a small model's generate
+    obs = [as_expr(dae.probes[k] if k in dae.probes else dae.exports[k]) for k in names_out]
     return names_out, obs
 
 
@@ -787,7 +805,9 @@ def generate(dae) -> tuple[str, dict[str, Any]]:
     # every probe and exported quantity as the source of one vectorised expression, compiled
     # only when asked for: a circuit of thousands of parts exports tens of thousands of
     # quantities, and evaluating them all at every output point would cost gigabytes
+    vector.names = ren
     src += ["OBSERVED = ["] + [f"    {_print(e, vector)!r}," for e in obs] + ["]", ""]
+    vector.names = None
     meta = _meta(dae, names_out, init_syms)
     for part in (_events, _crossings):  # separate factories: no cost without switching
         part_src, part_meta = part(dae, ren, n, n_par, scalar)

@@ -58,12 +58,14 @@ def consistent_initial(model, t0: float, y: np.ndarray, p: tuple[float, ...],
     y = np.array(y, float)
     yp = np.zeros(len(y)) if yp_guess is None else np.array(yp_guess, float)
     y, yp = _newton(model, t0, y, yp, p, nd, tol, max_iter)
+    if nd == len(y):  # no algebraic unknowns: every y' is Newton's already
+        return y, yp
     # d/dt F = Ft + Fy y' + Fyp y'' = 0; unknowns: y' of algebraic, y'' of differential.
     A, Fy_d, Ft = _newton_matrix(model, t0, y, yp, p, nd)
     # a derivative that does not exist at t0 (x**n/x at x = 0) leaves the algebraic y' at 0:
     # they only seed the integrator, which corrects them on its first step
     finite = np.all(np.isfinite(A.data if not isinstance(A, np.ndarray) else A))
-    if nd < len(y) and finite and np.all(np.isfinite(Ft)):
+    if finite and np.all(np.isfinite(Ft)):
         rhs = -(Ft + Fy_d @ yp[:nd])
         yp[nd:] = _solve(A, rhs, least_squares=isinstance(A, np.ndarray))[nd:]
     return y, yp
