@@ -100,11 +100,11 @@ def _in_chunks(model, run: Settings, sets: list[dict], size: int) -> list[SimRes
                               max_step=run.max_step, init=run.init, nearby=True)
         if not out:
             out.append(runs[0])
-        out += [_moved(out[0], runs[0], r) for r in runs[1:]]
+        out += [moved(out[0], runs[0], r) for r in runs[1:]]
     return out
 
 
-def _moved(point: SimResult, local: SimResult, member: SimResult) -> SimResult:
+def moved(point: SimResult, local: SimResult, member: SimResult) -> SimResult:
     """``member``'s difference from ``local`` (its batch's run of the point) added to
     ``point``; the member as it is when either run failed or their grids differ."""
     if not (point.success and local.success and member.success) or \

@@ -272,7 +272,8 @@ class _Convolver:
     def __init__(self, g: Kernels, onsets: list[int], n: int):
         self.n, self.onsets = n, onsets
         self.size = 1 << int(2 * n - 1).bit_length()  # no circular wrap
-        self.G = {p: [np.fft.rfft(k - k[0], self.size) for k in ks] for p, ks in g.items()}
+        self.G = {p: np.stack([np.fft.rfft(k - k[0], self.size) for k in ks])
+                  for p, ks in g.items()}
         self.direct = {p: np.zeros(n) for p in g}
         bounds = [*onsets, n]
         for p, ks in g.items():
@@ -291,7 +292,7 @@ class _Convolver:
                           for a, b in itertools.pairwise([*self.onsets, self.n])])
         U = np.fft.rfft(parts, self.size, axis=1)
         at = np.where(index >= first, u_at, 0.0)
-        return {p: np.fft.irfft(np.sum(np.stack(G) * U, axis=0), self.size)[:self.n]
+        return {p: np.fft.irfft(np.sum(G * U, axis=0), self.size)[:self.n]
                 + self.direct[p] * at for p, G in self.G.items()}
 
 
@@ -318,29 +319,49 @@ def _site_promises(setup: Setup, site: Site, base, conv: _Convolver,
         MAX_ORDER, int(ORDER_NYQUIST * 0.5 / float(t[1] - t[0]) * 2 * math.pi / top))
     out = np.full(max(kmax, 0), -np.inf)
     dim = ew.size
-    base_gain, _ = _gain(nuisance, ew)
-    rest = float(ew @ ew) - base_gain
+    basis = _basis(nuisance)
+    if basis is None:  # a null nuisance column: no order can be scored against it
+        return out
+    left = ew - basis @ (basis.T @ ew)  # what the nuisance leaves
+    rest = float(left @ left)
     for k in range(1, kmax + 1):
         if k > 1 and k * travel < 2 * math.pi:  # under one period: a drift, not an order
             continue
-        gain, ok = _gain([*nuisance, *(_column(setup, site, base, conv, whiten,
-                                               lambda x, k=k, f=f: f(k * x))
-                                       for f in (np.sin, np.cos))], ew)
-        if ok and rest > 0.0:
-            share = min(max((gain - base_gain) / rest, 0.0), 1.0 - 1e-15)
+        gain = _added_gain(basis, [_column(setup, site, base, conv, whiten,
+                                           lambda x, k=k, f=f: f(k * x))
+                                   for f in (np.sin, np.cos)], left)
+        if gain is not None and rest > 0.0:
+            share = min(max(gain / rest, 0.0), 1.0 - 1e-15)
             out[k - 1] = -dim * math.log(1.0 - share) - 2 * math.log(dim)
     return out
 
 
-def _gain(cols: list[np.ndarray], e: np.ndarray) -> tuple[float, bool]:
-    """The sum of squares of ``e`` that least squares on ``cols`` explains (unit-norm
-    columns); False when a column is null."""
+def _basis(cols: list[np.ndarray]) -> np.ndarray | None:
+    """An orthonormal basis of the span of ``cols`` (None when a column is null), to the
+    rank least squares would give them: the nuisance is projected out once per site, and
+    each order's two columns are then a 2-column fit, not a least squares over all."""
     S = np.column_stack(cols)
     scale = np.linalg.norm(S, axis=0)
     if not np.all(scale > 0.0):
-        return 0.0, False
-    coef, *_ = np.linalg.lstsq(S / scale, e, rcond=None)
-    return float(e @ ((S / scale) @ coef)), True
+        return None
+    U, sv, _ = np.linalg.svd(S / scale, full_matrices=False)
+    rank = int(np.sum(sv > np.finfo(float).eps * max(S.shape) * sv[0]))
+    return U[:, :rank]
+
+
+def _added_gain(basis: np.ndarray, cols: list[np.ndarray], left: np.ndarray
+                ) -> float | None:
+    """The sum of squares of ``left`` (a residual orthogonal to ``basis``) that ``cols``
+    explain beyond ``basis``: their parts orthogonal to it fitted by least squares (None
+    when a column is null)."""
+    S = np.column_stack(cols)
+    scale = np.linalg.norm(S, axis=0)
+    if not np.all(scale > 0.0):
+        return None
+    S = S / scale
+    S -= basis @ (basis.T @ S)
+    coef, *_ = np.linalg.lstsq(S, left, rcond=None)
+    return float(left @ (S @ coef))
 
 
 def _midpoints(x: np.ndarray) -> np.ndarray:
