@@ -22,7 +22,6 @@ from __future__ import annotations
 
 import math
 import sys
-from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -151,15 +150,7 @@ def sim(regime: str, t: np.ndarray, fx: dict) -> dict[str, np.ndarray]:
     return sp.simulate(regime, t, fx)
 
 
-def spec(rid: str, cls: str, regime: str, uneven: bool, parts: Sequence[Part] = (),
-         noise: dict | None = None, note: str = "",
-         marginal: Callable[[float], Sequence[Part]] | None = None,
-         size: float | None = None) -> dict[str, Any]:
-    """One record's specification."""
-    fx, effects = recordkit.combine(parts)
-    return {"id": rid, "class": cls, "regime": regime, "uneven": uneven, "fx": fx,
-            "parts": tuple(parts), "effects": effects, "noise": noise, "note": note,
-            "marginal": marginal, "size": size}
+spec = recordkit.spec
 
 
 # ---------------------------------------------------------------------- the records

@@ -69,6 +69,19 @@ def outside(kind: str, fx: dict, params: dict) -> tuple[dict, dict]:
                 "parameters": params, "expected": {}}
 
 
+def spec(rid: str, cls: str, regime: str, uneven: bool,
+         parts: Sequence[tuple[dict, dict]] = (), noise: dict | None = None, note: str = "",
+         marginal: Callable[[float], Sequence[tuple[dict, dict]]] | None = None,
+         size: float | None = None) -> dict[str, Any]:
+    """One record's specification (the generators of motors P to T): its effects' parts
+    combined (``combine``), the noise, the note, and for a marginal record the function
+    that makes its parts at a size."""
+    fx, effects = combine(parts)
+    return {"id": rid, "class": cls, "regime": regime, "uneven": uneven, "fx": fx,
+            "parts": tuple(parts), "effects": effects, "noise": noise, "note": note,
+            "marginal": marginal, "size": size}
+
+
 def jittered_times(rng: np.random.Generator, fs: float, duration: float, jitter: float,
                    step: float = 1e-9) -> np.ndarray:
     """A fast acquisition's times [s]: the grid k/fs [Hz], each time but the first moved by
