@@ -36,34 +36,37 @@ MATRIX_RESIDUAL_FROM = 100
 SPARSE_FROM = 400
 
 
-def _printers():
+class _Direct:
+    """Sums, products and integer powers inside a function's arguments or a piecewise
+    branch written as ``_print`` writes them at the top: sympy's own printers sort a
+    sum's terms and test a product's signs first, which was most of a compile's time
+    (a model's probes, printed for the vectorised route, are mostly piecewise)."""
+
+    def _print_Add(self, e, order=None):
+        return "(" + " + ".join(map(self._print, e.args)) + ")"
+
+    def _print_Mul(self, e):
+        return "(" + "*".join(map(self._print, e.args)) + ")"
+
+    def _print_Pow(self, e, rational=False):
+        if e.exp.is_Integer and e.exp >= 0:  # numpy refuses an integer's negative power
+            return f"({self._print(e.base)})**({int(e.exp)})"
+        return super()._print_Pow(e, rational=rational)
+
+    def _print_Float(self, e):
+        return repr(float(e))
+
+    def _print_Symbol(self, e):
+        return _renamed(e, self)
+
+
+def _printers(names: dict | None = None):
+    """The scalar, vectorised and kernel printers; the vectorised one renames symbols by
+    ``names`` (``_renamed``)."""
     from sympy.printing.numpy import NumPyPrinter
     from sympy.printing.pycode import PythonCodePrinter
 
-    class Direct:
-        """Sums, products and integer powers inside a function's arguments or a piecewise
-        branch written as ``_print`` writes them at the top: sympy's own printers sort a
-        sum's terms and test a product's signs first, which was most of a compile's time
-        (a model's probes, printed for the vectorised route, are mostly piecewise)."""
-
-        def _print_Add(self, e, order=None):
-            return "(" + " + ".join(map(self._print, e.args)) + ")"
-
-        def _print_Mul(self, e):
-            return "(" + "*".join(map(self._print, e.args)) + ")"
-
-        def _print_Pow(self, e, rational=False):
-            if e.exp.is_Integer and e.exp >= 0:  # numpy refuses an integer's negative power
-                return f"({self._print(e.base)})**({int(e.exp)})"
-            return super()._print_Pow(e, rational=rational)
-
-        def _print_Float(self, e):
-            return repr(float(e))
-
-        def _print_Symbol(self, e):
-            return _renamed(e, self)
-
-    class Scalar(Direct, PythonCodePrinter):
+    class Scalar(_Direct, PythonCodePrinter):
         guard = "inline"  # an inert term's function, see _term
 
         def _print_Lookup(self, e):
@@ -76,7 +79,7 @@ def _printers():
             x, per = (self._print(a) for a in e.args)
             return f"(({x}) % ({per}))"
 
-    class Vector(Direct, NumPyPrinter):
+    class Vector(_Direct, NumPyPrinter):
         def _print_Lookup(self, e):
             return f"TV[{int(e.args[0])}]({self._print(e.args[1])})"
 
@@ -109,7 +112,9 @@ def _printers():
         guard = "call"  # the kernels' guarded calls (kernel_lib.py)
 
     options = {"fully_qualified_modules": True, "standard": "python3"}
-    return Scalar(options), Vector({"fully_qualified_modules": True}), Kernel(options)
+    vector = Vector({"fully_qualified_modules": True})
+    vector.names = names
+    return Scalar(options), vector, Kernel(options)
 
 
 def _names(dae) -> dict:
@@ -770,8 +775,8 @@ def generate(dae) -> tuple[str, dict[str, Any]]:
 
     from circuitsim.component import as_expr
 
-    scalar, vector, kernel = _printers()
     ren = _names(dae)
+    scalar, vector, kernel = _printers(ren)
     n, n_par = len(dae.states), len(dae.params)
     F = [as_expr(e).xreplace(ren) for e in dae.equations]
     t, cj = sp.Symbol("t"), sp.Symbol("cj")
@@ -805,9 +810,7 @@ def generate(dae) -> tuple[str, dict[str, Any]]:
     # every probe and exported quantity as the source of one vectorised expression, compiled
     # only when asked for: a circuit of thousands of parts exports tens of thousands of
     # quantities, and evaluating them all at every output point would cost gigabytes
-    vector.names = ren
     src += ["OBSERVED = ["] + [f"    {_print(e, vector)!r}," for e in obs] + ["]", ""]
-    vector.names = None
     meta = _meta(dae, names_out, init_syms)
     for part in (_events, _crossings):  # separate factories: no cost without switching
         part_src, part_meta = part(dae, ren, n, n_par, scalar)
