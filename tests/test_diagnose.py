@@ -8,6 +8,7 @@ them. Noise: speed 0.1 rad/s and current 1 mA (1 sigma); ADC steps 0.05 rad/s an
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 import warnings
@@ -1176,3 +1177,55 @@ def test_a_delay_that_needs_a_lag_or_an_average_to_fit_is_no_delay():
         for phi in (0.0, 0.8):
             right = _delay_case("delay", seed, phi)
             assert right.spread < LAW_RANGE and not right.bent, (seed, phi, right)
+
+
+def test_a_fast_ripple_screened_in_its_own_batch_scores_as_in_the_joint_one(monkeypatch):
+    """A harmonic whose ripple is faster than a tenth of the sampling rate is stepped in a
+    batch of its own (it would hold every member to its steps) and moved onto the main
+    batch's base run: every candidate's linearised share and start values are those of the
+    single joint batch, to the integration's tolerance, and only that harmonic is split."""
+    from circuitsim.loop.diagnose import screen as sc
+    from circuitsim.loop.diagnose.engine import fit_declared
+
+    rec = make_record([("cogging", "rotor", 3, [1e-3, 0.0])], seed=8)
+    setup, state = fit_declared(cs.load(MOTOR), rec, (), None, None, 1e-8, 3, None)
+    top = float(np.max(np.abs(state.fit.sim["rotor.w"])))
+    rate = (T.size - 1) / float(T[-1])
+    fast = math.ceil(0.2 * rate * 2 * math.pi / top)  # twice the threshold
+    cands = effects.candidates(build(state.raw), {"rotor": [3, fast]})
+    props = [sc.Proposal(c, False) for c in cands if c.effect in (
+        "cogging", "viscous-friction", "emf-harmonic")
+        and c.fixed.get("order") in (None, 3, fast)]
+    assert sorted(p.candidate.key for p in sc._fast(setup, state, props)) == \
+        [f"cogging:rotor:{fast}", f"emf-harmonic:M:{fast}"]
+    _, wave, _ = sc.projections(setup, state.model)
+
+    def shares(split: bool, rtol: float = setup.rtol) -> dict[str, tuple[float, dict]]:
+        if not split:
+            monkeypatch.setattr(sc, "_fast", lambda *a: [])
+        out = sc.screen_many(dataclasses.replace(setup, rtol=rtol), state, props,
+                             lambda p: wave, lambda fn: 0.0)
+        monkeypatch.undo()
+        return {s.proposal.candidate.key: (s.share, dict(s.start)) for s in out if s}
+
+    split, joint = shares(True), shares(False)
+    # the solver's own noise: the joint batch at 1.5 times the tolerance, as the screen
+    # measures it for its noise threshold
+    alt = shares(False, 1.5 * setup.rtol)
+    assert split.keys() == joint.keys() == alt.keys() and len(split) == len(props)
+    c_steps = {n: c.steps.get(n, 1e-3) for c in cands for n in c.free}
+
+    def worst(other: dict) -> float:
+        """The largest relative change of a share or a start value from ``joint``
+        (a start near zero, on the scale of its parameter's screening step)."""
+        out = 0.0
+        for key, (share, start) in joint.items():
+            out = max(out, abs(other[key][0] - share) / share)
+            for name, value in start.items():
+                scale = max(abs(value), c_steps[name])
+                out = max(out, abs(other[key][1][name] - value) / scale)
+        return out
+
+    # measured: 1.1e-3 split, 6.6e-4 from the tolerance alone
+    assert worst(split) <= 3 * worst(alt), (worst(split), worst(alt))
+    assert joint["cogging:rotor:3"][0] > 0.5  # the hidden ripple is the one that scores
