@@ -296,12 +296,14 @@ def _fast(setup: Setup, state: ModelState, proposals: list[Proposal]) -> list[Pr
     out = []
     for p in proposals:
         order = p.candidate.fixed.get("order")
+        if order is None:  # not a harmonic: no ripple of its own
+            continue
         shaft = shaft_of.get(p.candidate.target, p.candidate.target)
         try:
             top = float(np.max(np.abs(np.asarray(state.fit.sim[f"{shaft}.w"], float))))
         except KeyError:
             continue
-        if order is not None and order * top / (2 * math.pi) > FAST_RIPPLE * rate:
+        if order * top / (2 * math.pi) > FAST_RIPPLE * rate:
             out.append(p)
     return out
 
