@@ -23,11 +23,13 @@ periodogram, whose background is a median over the spectrum, not a global floor.
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.fft
 from scipy.ndimage import median_filter
 
 MAX_AR_ORDER = 6
@@ -60,8 +62,9 @@ class Whitener:
 def _autocovariance(r: np.ndarray, lags: int) -> np.ndarray:
     x = r - r.mean()
     n = x.size
-    f = np.fft.rfft(x, 2 * n)
-    acov = np.fft.irfft(f * np.conj(f))[: lags + 1] / n
+    size = linear_size(n)
+    f = scipy.fft.rfft(x, size)
+    acov = scipy.fft.irfft(f * np.conj(f), size)[: lags + 1] / n
     return acov
 
 
@@ -135,10 +138,26 @@ def fractional_difference(r: np.ndarray, d: float) -> np.ndarray:
     record, applied as a causal convolution (by FFT)."""
     r = np.asarray(r, float)
     n = r.size
+    size = linear_size(n)
+    return scipy.fft.irfft(scipy.fft.rfft(r, size) * _weights(n, d, size), size)[:n]
+
+
+@functools.lru_cache(maxsize=8)
+def _weights(n: int, d: float, size: int) -> np.ndarray:
+    """The spectrum of (1 - B)^d's first ``n`` weights, zero-padded to ``size``: one whitener
+    filters hundreds of columns in a scan."""
     k = np.arange(1, n)
     w = np.concatenate([[1.0], np.cumprod((k - 1 - d) / k)])
-    size = 1 << int(2 * n - 1).bit_length()
-    return np.fft.irfft(np.fft.rfft(r, size) * np.fft.rfft(w, size), size)[:n]
+    out = scipy.fft.rfft(w, size)
+    out.flags.writeable = False
+    return out
+
+
+def linear_size(n: int) -> int:
+    """The FFT length for a linear (not circular) convolution of two n-sample signals: the
+    smallest 2-3-5-smooth length >= 2n - 1 (a power of two, as used before, was up to twice
+    as long and twice as slow)."""
+    return scipy.fft.next_fast_len(2 * n - 1, real=True)
 
 
 def memory_whiteners(residuals: Mapping[str, np.ndarray], probes: Sequence[str]

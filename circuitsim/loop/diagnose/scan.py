@@ -30,10 +30,11 @@ from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
+import scipy.fft
 
 from circuitsim.errors import CircuitsimError, SourceLoc
 from circuitsim.loop.diagnose.context import ModelState, Setup, compile_raw, simulate_many
-from circuitsim.loop.diagnose.noise import Whitener, whiteners_of
+from circuitsim.loop.diagnose.noise import Whitener, linear_size, whiteners_of
 from circuitsim.loop.record import Record, even_grid
 
 #: the highest order scanned; also bounded by a ripple's frequency at the shaft's top speed
@@ -271,8 +272,8 @@ class _Convolver:
 
     def __init__(self, g: Kernels, onsets: list[int], n: int):
         self.n, self.onsets = n, onsets
-        self.size = 1 << int(2 * n - 1).bit_length()  # no circular wrap
-        self.G = {p: np.stack([np.fft.rfft(k - k[0], self.size) for k in ks])
+        self.size = linear_size(n)  # no circular wrap
+        self.G = {p: np.stack([scipy.fft.rfft(k - k[0], self.size) for k in ks])
                   for p, ks in g.items()}
         self.direct = {p: np.zeros(n) for p in g}
         bounds = [*onsets, n]
@@ -290,9 +291,9 @@ class _Convolver:
         index = np.arange(self.n)
         parts = np.stack([np.where((index >= a) & (index < b), step, 0.0)
                           for a, b in itertools.pairwise([*self.onsets, self.n])])
-        U = np.fft.rfft(parts, self.size, axis=1)
+        U = scipy.fft.rfft(parts, self.size, axis=1)
         at = np.where(index >= first, u_at, 0.0)
-        return {p: np.fft.irfft(np.sum(G * U, axis=0), self.size)[:self.n]
+        return {p: scipy.fft.irfft(np.sum(G * U, axis=0), self.size)[:self.n]
                 + self.direct[p] * at for p, G in self.G.items()}
 
 
