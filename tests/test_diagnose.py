@@ -1229,3 +1229,53 @@ def test_a_fast_ripple_screened_in_its_own_batch_scores_as_in_the_joint_one(monk
     # measured: 1.1e-3 split, 6.6e-4 from the tolerance alone
     assert worst(split) <= 3 * worst(alt), (worst(split), worst(alt))
     assert joint["cogging:rotor:3"][0] > 0.5  # the hidden ripple is the one that scores
+
+
+def test_close_calls_are_refitted_and_a_rigid_gears_twin_once():
+    """The refit list of a round: the top three, then close calls -- screens within 0.85 of
+    the best share that leave at most twice what it leaves (the shares and leftovers of
+    fresh19's b06, where the true constant torque ranked eighth, and of bench_diagnose's
+    strong Coulomb friction, where the runners-up are told apart). A speed-dependent torque
+    on two shafts whose speeds are proportional (a rigid gear) is one circuit: refitted
+    once, its twin named with it; on a compliant coupling both are kept."""
+    from types import SimpleNamespace
+
+    from circuitsim.loop.diagnose.engine import _to_refit
+
+    t = np.linspace(0.0, 1.0, 501)
+    w = 100.0 * np.sin(7.0 * t) + 30.0 * t
+    compliant = w / 16.0 + 0.05 * np.sin(230.0 * t)  # a torsional mode on the load side
+    state = SimpleNamespace(fit=SimpleNamespace(sim={"rotor.w": w, "pump.w": w / 16.0,
+                                                     "wheel.w": compliant}))
+
+    def screen(effect: str, target: str, share: float):
+        cand = SimpleNamespace(effect=effect, target=target, key=f"{effect}:{target}",
+                               fixed={})
+        return SimpleNamespace(proposal=SimpleNamespace(candidate=cand), share=share)
+
+    b06 = [screen("viscous-friction", "rotor", 0.1440),
+           screen("viscous-friction", "pump", 0.1435),
+           screen("resistance-drift", "Ra", 0.1407),
+           screen("series-resistance", "Ra", 0.1398),
+           screen("brush-drop", "M", 0.1381),
+           screen("coulomb-friction", "rotor", 0.1376),
+           screen("coulomb-friction", "pump", 0.1374),
+           screen("force-offset", "pump", 0.1344),
+           screen("force-offset", "rotor", 0.1339),
+           screen("sensor-gain", "speed", 0.0431)]
+    log: dict = {}
+    keys = [s.proposal.candidate.key for s in _to_refit(state, b06, 3, log)]
+    assert keys == ["viscous-friction:rotor", "resistance-drift:Ra", "series-resistance:Ra",
+                    "brush-drop:M", "coulomb-friction:rotor", "force-offset:pump"]
+    assert log["shaft_twins"] == {"viscous-friction:rotor": ["viscous-friction:pump"],
+                                  "coulomb-friction:rotor": ["coulomb-friction:pump"],
+                                  "force-offset:pump": ["force-offset:rotor"]}
+    strong = [screen("coulomb-friction", "rotor", 0.999980),
+              screen("force-offset", "rotor", 0.999980),
+              screen("viscous-friction", "rotor", 0.999730),
+              screen("brush-drop", "M", 0.971979),
+              screen("series-resistance", "Lc1", 0.963638)]
+    keys = [s.proposal.candidate.key for s in _to_refit(state, strong, 3, {})]
+    assert keys == ["coulomb-friction:rotor", "force-offset:rotor", "viscous-friction:rotor"]
+    geared = [screen("viscous-friction", "rotor", 0.5), screen("viscous-friction", "wheel", 0.5)]
+    assert len(_to_refit(state, geared, 3, {})) == 2
