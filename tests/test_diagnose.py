@@ -1279,3 +1279,47 @@ def test_close_calls_are_refitted_and_a_rigid_gears_twin_once():
     assert keys == ["coulomb-friction:rotor", "force-offset:rotor", "viscous-friction:rotor"]
     geared = [screen("viscous-friction", "rotor", 0.5), screen("viscous-friction", "wheel", 0.5)]
     assert len(_to_refit(state, geared, 3, {})) == 2
+
+
+def test_a_residual_that_follows_the_models_own_signals_is_no_sensor_noise():
+    """A probe's residual that no other probe's residual follows is excused as its sensor's
+    coloured noise -- unless the model's own signals fit it through its noise filters: a
+    sensor's noise is independent of the circuit's state. A leakage path across a motor's
+    terminals (the current reads v/R more, v = k w + R i + L di/dt) is found; AR(1) and
+    1/f noise of the same size, independent of the circuit, are not."""
+    from types import SimpleNamespace
+
+    from circuitsim.loop.diagnose.describe import _follows_model
+
+    rng = np.random.default_rng(3)
+    t = np.arange(10_000) / 5e3
+    volts = np.select([t < 0.4, t < 1.2, t < 1.6], [24.0, 12.0, -18.0], 0.0)
+    speed = np.zeros_like(t)
+    for k in range(1, t.size):  # a first-order rotor, 50 ms
+        speed[k] = speed[k - 1] + (volts[k] / 0.05 - speed[k - 1]) * (t[1] / 0.05)
+    current = (volts - 0.05 * speed) / 0.5
+    sim = {"current": current, "speed": speed}
+    setup = SimpleNamespace(record=SimpleNamespace(t=t), probes=["current", "speed"])
+    state = SimpleNamespace(fit=SimpleNamespace(sim=sim))
+
+    def ar1(phi: float, sigma: float) -> np.ndarray:
+        x = np.zeros(t.size)
+        e = rng.normal(0.0, sigma, t.size)
+        for k in range(1, t.size):
+            x[k] = phi * x[k - 1] + e[k]
+        return x
+
+    def pink(sigma: float) -> np.ndarray:
+        f = np.fft.rfftfreq(t.size, t[1])
+        spec = np.fft.rfft(rng.normal(0.0, 1.0, t.size)) / np.sqrt(np.maximum(f, f[1]))
+        x = np.fft.irfft(spec, t.size)
+        return sigma * x / np.std(x)
+
+    white = {"current": rng.normal(0.0, 0.05, t.size), "speed": rng.normal(0.0, 0.4, t.size)}
+    leak = {**white, "current": white["current"] + volts / 150.0}
+    found = _follows_model(setup, state, leak, "current")
+    assert found is not None and found["delta_bic"] < -100.0
+    coloured = {"current": white["current"] + ar1(0.9, 0.04), "speed": white["speed"] + pink(0.4)}
+    assert np.std(coloured["current"] - white["current"]) > np.std(volts / 150.0) / 2
+    for p in ("current", "speed"):
+        assert _follows_model(setup, state, coloured, p) is None
