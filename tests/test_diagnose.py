@@ -1323,3 +1323,44 @@ def test_a_residual_that_follows_the_models_own_signals_is_no_sensor_noise():
     assert np.std(coloured["current"] - white["current"]) > np.std(volts / 150.0) / 2
     for p in ("current", "speed"):
         assert _follows_model(setup, state, coloured, p) is None
+
+
+def test_what_stays_beside_a_rejected_stand_in_must_explain_half_the_structure_alone(
+        monkeypatch):
+    """The end stage: an effect rejected as a stand-in (its law does not hold) is taken out,
+    and what stays is judged again by the named-share rule -- alone it must explain at
+    least half of the structure the declared model misses, as it had to beside the stand-in
+    (fresh13's v14: a current sensor's gain of +25 % stayed beside a rejected warm-up)."""
+    from types import SimpleNamespace
+
+    import circuitsim.loop.diagnose.engine as eng
+    from circuitsim.loop.diagnose.context import Choice
+
+    drift = Choice(SimpleNamespace(effect="resistance-drift", target="Ra", key="drift"))
+    gain = Choice(SimpleNamespace(effect="sensor-gain", target="current", key="gain"))
+    state0 = SimpleNamespace(chosen=[], name="declared")
+    both = SimpleNamespace(chosen=[drift, gain], name="both")
+    alone = SimpleNamespace(chosen=[gain], name="gain alone")
+    verdict = SimpleNamespace(why=lambda: "its law does not hold over the record")
+    flagged = iter([[(drift, verdict)], []])
+    monkeypatch.setattr(eng, "_unstable_effects", lambda setup, state, log: next(flagged))
+    monkeypatch.setattr(eng, "_without", lambda setup, state, keep:
+                        alone if keep == [gain] else state0)
+    shares = {"gain alone": (40.0, 60.0)}  # explains 40 %, leaves 60 %
+    monkeypatch.setattr(eng, "explained_and_left",
+                        lambda setup, before, after: shares[after.name])
+    setup = SimpleNamespace(log=lambda text: None, max_effects=4)
+    log = {"rejected": [], "trials": {}}
+    final = eng._unstable(setup, state0, both, log)
+    assert final is state0                       # the gain goes too
+    assert log["named_share"] == pytest.approx(0.4)
+    assert log["stand_ins"].startswith("a stand-in: resistance-drift on Ra")
+    assert "without it, a partial stand-in: sensor-gain on current would explain 40%" in \
+        log["stand_ins"]
+    assert [r["effect"] for r in log["rejected"]] == ["resistance-drift", "sensor-gain"]
+    # a survivor that explains most of the structure alone stays
+    flagged = iter([[(drift, verdict)], []])
+    shares["gain alone"] = (70.0, 30.0)
+    log = {"rejected": [], "trials": {}}
+    assert eng._unstable(setup, state0, both, log) is alone
+    assert "without it" not in log["stand_ins"]

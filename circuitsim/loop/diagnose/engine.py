@@ -977,6 +977,12 @@ def _unstable(setup: Setup, state0: ModelState, state: ModelState, log: dict[str
     for c, _ in found:
         log["rejected"].append({"effect": c.candidate.effect, "target": c.candidate.target,
                                 "reason": why})
+    # the others passed the named-share rule beside the stand-in; alone they must pass it
+    # too (fresh13's v14: a parcel landing on a belt, a warm-up taken out as a stand-in left
+    # a current sensor's gain of +25 % that explained less than the structure beside it)
+    state = _stand_ins(setup, state0, state, log)
+    if log["stand_ins"] != why:
+        log["stand_ins"] = f"{why}; without it, {log['stand_ins']}"
     return state
 
 
