@@ -1250,7 +1250,7 @@ def test_close_calls_are_refitted_and_a_rigid_gears_twin_once():
 
     def screen(effect: str, target: str, share: float):
         cand = SimpleNamespace(effect=effect, target=target, key=f"{effect}:{target}",
-                               fixed={})
+                               fixed={}, shape=None)
         return SimpleNamespace(proposal=SimpleNamespace(candidate=cand), share=share)
 
     b06 = [screen("viscous-friction", "rotor", 0.1440),
@@ -1279,6 +1279,12 @@ def test_close_calls_are_refitted_and_a_rigid_gears_twin_once():
     assert keys == ["coulomb-friction:rotor", "force-offset:rotor", "viscous-friction:rotor"]
     geared = [screen("viscous-friction", "rotor", 0.5), screen("viscous-friction", "wheel", 0.5)]
     assert len(_to_refit(state, geared, 3, {})) == 2
+    # fresh16's y09: a warm-up's start at 6 s within 0.86 of the best is no close call
+    y09 = [screen("inertia", "Jv", 0.7249), screen("inertia", "Jh", 0.6529),
+           screen("inertia", "Jr", 0.6529), screen("resistance-drift", "Ra", 0.6243),
+           screen("resistance-drift", "Ra", 0.5809)]
+    y09[3].proposal.candidate.shape = "warm-up"
+    assert len(_to_refit(state, y09, 3, {})) == 3
 
 
 def test_a_residual_that_follows_the_models_own_signals_is_no_sensor_noise():

@@ -415,8 +415,13 @@ def _to_refit(state: ModelState, screens: list[Screen], top: int, log: dict[str,
     screens = _one_per_rigid_set(state, screens, log)
     head = screens[:top] + _near_ties(screens, top)
     best = screens[0].share if screens else 0.0
-    close = [s for s in screens[top:] if s not in head and s.share >= CLOSE_CALL * best
-             and 1.0 - s.share <= CLOSE_LEFT * (1.0 - best)]
+    # a shape's start (a warm-up's time constant, a Stribeck speed) is no close call: its
+    # share is that of one point on the shape's grid, and a refit that wins with the shape
+    # off takes its effect's place for the rest of the search (fresh16's y09: a warm-up at
+    # 6 s won before the inertia correction, was rejected as unstable at the end, and the
+    # linear drift of the truth was never refitted)
+    close = [s for s in screens[top:] if s not in head and not s.proposal.candidate.shape
+             and s.share >= CLOSE_CALL * best and 1.0 - s.share <= CLOSE_LEFT * (1.0 - best)]
     return head + close[:MAX_CLOSE_CALLS]
 
 
