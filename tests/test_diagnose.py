@@ -689,6 +689,9 @@ def test_an_effect_whose_parameters_are_not_constants_is_a_stand_in(monkeypatch)
         return ModelState(None, None, [], {}, None, {}, keep)
 
     monkeypatch.setattr(engine, "_without", without)
+    # what stays explains the structure alone (the named-share rule it is judged by again
+    # has its own test)
+    monkeypatch.setattr(engine, "explained_and_left", lambda setup, before, after: (1.0, 0.0))
     said: list[str] = []
     setup = SimpleNamespace(log=said.append)
     state = ModelState(None, None, [], {}, None, {}, [Choice(drift), Choice(offset)])
