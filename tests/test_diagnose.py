@@ -349,6 +349,39 @@ def test_effects_that_explain_less_than_they_leave_are_a_partial_stand_in(a, b):
         assert _stand_ins(setup, before, after, log) is after and not log["rejected"]
 
 
+def test_the_share_left_by_a_stand_in_taken_out_is_measured_by_the_whole_model():
+    """Effects judged again once a stand-in is taken out are measured against the misfit of
+    the model that held it: what the stand-in fitted is left again, whatever its colour.
+    Two probes of unit white noise over 10 s: ``a`` holds a 37 Hz line the surviving effect
+    explains, ``b`` a slow sag (0.25 Hz, the stand-in's share) -- the shape of fresh14's
+    w13. Measured by the model without the stand-in, the AR filter learnt on its residual
+    takes much of the sag for the noise's colour and the survivor seems to explain twice its
+    share; measured by the whole model, it explains E_a / (E_a + E_b) within 0.05."""
+    from types import SimpleNamespace
+
+    from circuitsim.loop.diagnose.context import ModelState
+    from circuitsim.loop.diagnose.decide import explained_and_left
+
+    rng = np.random.default_rng(3)
+    t = np.arange(20000) * 5e-4
+    na, nb = rng.normal(size=t.size), rng.normal(size=t.size)
+    line = 0.25 * np.sin(2 * np.pi * 37 * t)
+    sag = 0.5 * np.sin(2 * np.pi * 0.25 * t)
+    setup = SimpleNamespace(probes=("a", "b"), record=SimpleNamespace(t=t))
+
+    def state(ra, rb):
+        return ModelState(None, None, [], {}, SimpleNamespace(residuals={"a": ra, "b": rb}),
+                          {})
+
+    declared, part, whole = state(na + line, nb + sag), state(na, nb + sag), state(na, nb)
+    truth = np.sum(line**2) / (np.sum(line**2) + np.sum(sag**2))
+    assert truth < 0.3
+    own, left = explained_and_left(setup, declared, part, whole)
+    assert own / (own + left) == pytest.approx(truth, abs=0.05)
+    own, left = explained_and_left(setup, declared, part)  # its own yardstick
+    assert own / (own + left) > truth + 0.15
+
+
 @pytest.mark.parametrize("worse", [0.0, 0.02, 0.2])
 def test_effects_that_fit_one_probe_worse_trade_the_probes(worse):
     """Stage 5a (engine._trades): two probes of unit white noise; the declared model misses
@@ -691,7 +724,8 @@ def test_an_effect_whose_parameters_are_not_constants_is_a_stand_in(monkeypatch)
     monkeypatch.setattr(engine, "_without", without)
     # what stays explains the structure alone (the named-share rule it is judged by again
     # has its own test)
-    monkeypatch.setattr(engine, "explained_and_left", lambda setup, before, after: (1.0, 0.0))
+    monkeypatch.setattr(engine, "explained_and_left",
+                        lambda setup, before, after, whole=None: (1.0, 0.0))
     said: list[str] = []
     setup = SimpleNamespace(log=said.append)
     state = ModelState(None, None, [], {}, None, {}, [Choice(drift), Choice(offset)])
@@ -1355,9 +1389,10 @@ def test_what_stays_beside_a_rejected_stand_in_must_explain_half_the_structure_a
     monkeypatch.setattr(eng, "_unstable_effects", lambda setup, state, log: next(flagged))
     monkeypatch.setattr(eng, "_without", lambda setup, state, keep:
                         alone if keep == [gain] else state0)
-    shares = {"gain alone": (40.0, 60.0)}  # explains 40 %, leaves 60 %
-    monkeypatch.setattr(eng, "explained_and_left",
-                        lambda setup, before, after: shares[after.name])
+    # explains 40 %, leaves 60 % -- of the misfit the model with the stand-in measured
+    shares = {("gain alone", "both"): (40.0, 60.0)}
+    monkeypatch.setattr(eng, "explained_and_left", lambda setup, before, after, whole=None:
+                        shares[(after.name, whole.name)])
     setup = SimpleNamespace(log=lambda text: None, max_effects=4)
     log = {"rejected": [], "trials": {}}
     final = eng._unstable(setup, state0, both, log)
@@ -1369,7 +1404,7 @@ def test_what_stays_beside_a_rejected_stand_in_must_explain_half_the_structure_a
     assert [r["effect"] for r in log["rejected"]] == ["resistance-drift", "sensor-gain"]
     # a survivor that explains most of the structure alone stays
     flagged = iter([[(drift, verdict)], []])
-    shares["gain alone"] = (70.0, 30.0)
+    shares[("gain alone", "both")] = (70.0, 30.0)
     log = {"rejected": [], "trials": {}}
     assert eng._unstable(setup, state0, both, log) is alone
     assert "without it" not in log["stand_ins"]

@@ -185,14 +185,29 @@ def judge(setup: Setup, state: ModelState, trial: Trial) -> Trial:
     return trial
 
 
-def explained_and_left(setup: Setup, before: ModelState, after: ModelState
-                       ) -> tuple[float, float]:
+def explained_and_left(setup: Setup, before: ModelState, after: ModelState,
+                       whole: ModelState | None = None) -> tuple[float, float]:
     """What the model ``after`` explains of ``before``'s misfit, and the structure it leaves
     (steady lines or a transient, whichever holds more), both in units of each probe's
-    whitened noise variance and measured as ``judge`` measures a trial."""
-    whiten, old, new = _whitened_both(setup, before, after)
-    gain, left, _ = _in_noise_units(setup, whiten, old, new, after.fit.residuals)
-    return gain, left
+    whitened noise variance and measured as ``judge`` measures a trial.
+
+    ``whole``: a model with ``after``'s effects and more, which is then the yardstick: the
+    misfit is what ``whole`` explains plus what it leaves, both through the filters learnt
+    on its residual, and ``after`` leaves all of it that it does not explain. Effects taken
+    out of a model leave their structure in its residual, where filters learnt on that
+    residual take a slow part of it for the noise's colour (fresh14's w13: a battery's
+    droop, fitted in part by two sensor gains taken out as unstable, left the speeds' sag
+    to an AR(6) filter, and a third gain seemed to explain most of what remained)."""
+    if whole is None:
+        whiten, old, new = _whitened_both(setup, before, after)
+        gain, left, _ = _in_noise_units(setup, whiten, old, new, after.fit.residuals)
+        return gain, left
+    whiten, old, full = _whitened_both(setup, before, whole)
+    gain, left, _ = _in_noise_units(setup, whiten, old, full, whole.fit.residuals)
+    part = after.whitened(setup, whiten)
+    own = sum((old[p] - part[p]) * np.asarray(whole.fit.residuals[p]).size / max(full[p], 1e-300)
+              for p in setup.probes)
+    return own, gain + left - own
 
 
 def _whitened_both(setup: Setup, before: ModelState, after: ModelState

@@ -909,19 +909,20 @@ def _kept_out(setup: Setup, state0: ModelState, state: ModelState, log: dict[str
     return reduced
 
 
-def _stand_ins(setup: Setup, state0: ModelState, state: ModelState, log: dict[str, Any]
-               ) -> ModelState:
+def _stand_ins(setup: Setup, state0: ModelState, state: ModelState, log: dict[str, Any],
+               whole: ModelState | None = None) -> ModelState:
     """Stage 5b: the new effects, together, must explain at least ``NAMED_SHARE_MIN`` of the
     declared model's misfit (what they explain plus the structure they leave beside it).
     Each passed its own test on a slice of the misfit; when they explain less, and no
     catalog effect explains the rest (the search ended for want of one, not at its limit of
     effects), they are a partial stand-in for a cause the catalog
     lacks (an armature reaction taken for a warm-up of the winding): reported as such, kept
-    out of the netlist."""
+    out of the netlist. ``whole``: the model before stand-ins were taken out of ``state``,
+    whose misfit is the yardstick (``explained_and_left``)."""
     new = [c for c in state.chosen if not c.correction]
     if not new:
         return state
-    gain, left = explained_and_left(setup, state0, state)
+    gain, left = explained_and_left(setup, state0, state, whole)
     log["named_share"] = gain / (gain + left) if gain + left > 0 else 1.0
     if log["named_share"] >= NAMED_SHARE_MIN:
         return state
@@ -950,6 +951,7 @@ def _unstable(setup: Setup, state0: ModelState, state: ModelState, log: dict[str
     if "stand_ins" in log:
         return state
     found: list[tuple[Choice, Any]] = []
+    whole = state
     while True:
         unstable = _unstable_effects(setup, state, log)
         if not unstable:
@@ -984,8 +986,9 @@ def _unstable(setup: Setup, state0: ModelState, state: ModelState, log: dict[str
                                 "reason": why})
     # the others passed the named-share rule beside the stand-in; alone they must pass it
     # too (fresh13's v14: a parcel landing on a belt, a warm-up taken out as a stand-in left
-    # a current sensor's gain of +25 % that explained less than the structure beside it)
-    state = _stand_ins(setup, state0, state, log)
+    # a current sensor's gain of +25 % that explained less than the structure beside it),
+    # of the misfit the model with the stand-in measured: what it fitted is left again
+    state = _stand_ins(setup, state0, state, log, whole)
     if log["stand_ins"] != why:
         log["stand_ins"] = f"{why}; without it, {log['stand_ins']}"
     return state
