@@ -116,9 +116,11 @@ def _own_noise(setup: Setup, state: ModelState, probes: dict[str, Any]) -> dict[
     transients under ``MIN_SHARE``, as prewhitened or once a long memory is taken out
     (``_long_memory``): reported for not being white -- and which no other probe's residual
     follows (``FOLLOW_P``): their sensor's own coloured noise, each with the chance
-    probability of its strongest coherence. None on a record of one probe."""
-    if len(setup.probes) < 2:
-        return {}
+    probability of its strongest coherence. On a record of one probe no other probe can
+    follow it, and the model's own signals (``_follows_model``) are the only test: a speed
+    sensor's 1/f noise alone was "something I cannot name" on four null records read by
+    their speed alone (h06, n04, k02, j02), where their current and speed together were
+    clean."""
     t = np.asarray(setup.record.t, float)
     res = {p: np.asarray(state.fit.residuals[p], float) for p in setup.probes}
     out = {}
@@ -131,7 +133,8 @@ def _own_noise(setup: Setup, state: ModelState, probes: dict[str, Any]) -> dict[
             e["follows_model"] = follow
             continue
         others = [q for q in setup.probes if q != p]
-        chance = min(_coherence_chance(t, res[p], res[q]) for q in others) * len(others)
+        chance = min((_coherence_chance(t, res[p], res[q]) for q in others), default=1.0) * \
+            max(len(others), 1)
         if chance > FOLLOW_P:
             out[p] = {"coherence_chance": min(chance, 1.0),
                       "white_after_prewhitening": e["white_after_prewhitening"],
@@ -500,7 +503,8 @@ def _model_text(entry: dict[str, Any]) -> str:
 def _note(probes: dict[str, Any], resolved: list[str] | None = None,
           coloured: dict[str, Any] | None = None) -> str:
     own = (f" ({', '.join(coloured)}: otherwise noise, not white beyond its noise model, "
-           f"and no other probe follows it: not counted as structure)") if coloured else ""
+           f"and neither another probe nor the model's own signals follow it: not counted "
+           f"as structure)") if coloured else ""
     if not probes:
         if resolved:
             return (f"nothing significant remains: the model matches {', '.join(resolved)} to "
