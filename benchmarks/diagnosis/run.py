@@ -380,8 +380,10 @@ def report(entries: list[dict], title: str) -> tuple[int, int]:
         nf = res.get("noise_floor", {}).get("after", {})
         rem = res.get("remaining", {})
         if rem.get("named_share") is not None:  # the named effects against what they leave
-            who = "a partial stand-in (not accepted) would" if rem.get("stand_ins") else \
-                "the effects found"
+            # the share is of the last model judged by it: with a stand-in the law or the
+            # quarters rejected after, it is the stand-in's own
+            who = "the effects rejected as stand-ins (not accepted) would" \
+                if rem.get("stand_ins") else "the effects found"
             print(f"    {who} explain {rem['named_share']:.0%} of the structure the declared "
                   "model misses")
         print(f"    error {res['error_before']:.4g} -> {res['error_after']:.4g}; noise floor "
