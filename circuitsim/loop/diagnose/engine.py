@@ -331,19 +331,31 @@ SAME_FIT = 1e-7
 def _distinct(state: ModelState, proposals: list, log: dict[str, Any]) -> list:
     """A resistance in series with any of several elements that carry the same current is
     the same circuit: one of them is screened, and the others are named with it."""
-    out, seen = [], []
-    for prop in proposals:
+    def signal(prop):
         c = prop.candidate
         i = _current(state, c.target) if c.effect in SERIES else None
-        if i is None:
-            out.append(prop)
+        return None if i is None else (c.key, "series", i)
+
+    return _first_of_twins(proposals, signal, _same_current, log.setdefault("twins", {}))
+
+
+def _first_of_twins(items: list, signal, same, twins: dict[str, list[str]]) -> list:
+    """``items`` in order without those whose ``signal(item)`` -- (key, kind, signal) or
+    None for an item that has no twin -- is ``same`` as that of an earlier item of its
+    kind: each is named in ``twins`` under the key of the one kept."""
+    out, seen = [], []
+    for item in items:
+        got = signal(item)
+        if got is None:
+            out.append(item)
             continue
-        twin = next((k for k, j in seen if _same_current(i, j)), None)
+        key, kind, x = got
+        twin = next((k for k, kd, y in seen if kd == kind and same(x, y)), None)
         if twin is None:
-            seen.append((c.key, i))
-            out.append(prop)
+            seen.append((key, kind, x))
+            out.append(item)
         else:
-            log.setdefault("twins", {}).setdefault(twin, []).append(c.key)
+            twins.setdefault(twin, []).append(key)
     return out
 
 
@@ -430,20 +442,12 @@ def _one_per_rigid_set(state: ModelState, screens: list[Screen], log: dict[str, 
     """A speed-dependent torque on shafts whose speeds are proportional over the whole run
     (a rigid gear between them) is the same circuit on each: the best-screened one stays and
     the others are named with it, as elements in series are (``_distinct``)."""
-    out, seen = [], []
-    for s in screens:
-        c = s.proposal.candidate
+    def signal(screen):
+        c = screen.proposal.candidate
         w = _speed(state, c.target) if c.effect in SPEED_TORQUES else None
-        if w is None:
-            out.append(s)
-            continue
-        twin = next((k for k, e, v in seen if e == c.effect and _proportional(w, v)), None)
-        if twin is None:
-            seen.append((c.key, c.effect, w))
-            out.append(s)
-        else:
-            log.setdefault("shaft_twins", {}).setdefault(twin, []).append(c.key)
-    return out
+        return None if w is None else (c.key, c.effect, w)
+
+    return _first_of_twins(screens, signal, _proportional, log.setdefault("shaft_twins", {}))
 
 
 def _speed(state: ModelState, shaft: str) -> np.ndarray | None:
