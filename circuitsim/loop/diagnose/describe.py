@@ -116,11 +116,14 @@ def _own_noise(setup: Setup, state: ModelState, probes: dict[str, Any]) -> dict[
     transients under ``MIN_SHARE``, as prewhitened or once a long memory is taken out
     (``_long_memory``): reported for not being white -- and which no other probe's residual
     follows (``FOLLOW_P``): their sensor's own coloured noise, each with the chance
-    probability of its strongest coherence. On a record of one probe no other probe can
-    follow it, and the model's own signals (``_follows_model``) are the only test: a speed
-    sensor's 1/f noise alone was "something I cannot name" on four null records read by
-    their speed alone (h06, n04, k02, j02), where their current and speed together were
-    clean."""
+    probability of its strongest coherence. A sensor's noise is independent of the circuit's
+    state, so neither may the model's own signals fit the residual (``_follows_model``) nor
+    may its excess power rise with the operating point (``_follows``, a signal of the
+    circuit's). On a record of one probe no other probe can follow it, and these are the
+    only tests: a speed sensor's 1/f noise alone was "something I cannot name" on four null
+    records read by their speed alone (h06, n04, k02, j02), where their current and speed
+    together were clean; fresh22's l14 (a wave's orbital flow through a propeller, the
+    speed log alone) was excused until its power's rise with the speed (0.97) was read."""
     t = np.asarray(setup.record.t, float)
     res = {p: np.asarray(state.fit.residuals[p], float) for p in setup.probes}
     out = {}
@@ -132,6 +135,8 @@ def _own_noise(setup: Setup, state: ModelState, probes: dict[str, Any]) -> dict[
         if follow is not None:
             e["follows_model"] = follow
             continue
+        if any(f["signal"] != "time" for f in e["follows"]):
+            continue  # its size rises with the circuit's state (time: a sensor may drift)
         others = [q for q in setup.probes if q != p]
         chance = min((_coherence_chance(t, res[p], res[q]) for q in others), default=1.0) * \
             max(len(others), 1)
