@@ -1386,6 +1386,39 @@ def test_a_residual_that_follows_the_models_own_signals_is_no_sensor_noise():
         assert _follows_model(setup, state, coloured, p) is None
 
 
+def test_a_lone_probes_residual_whose_power_rises_with_the_speed_is_no_sensor_noise():
+    """On a record of one probe the tests of a sensor's own noise are the circuit's: the
+    model's signals may not fit it, nor may its excess power rise with them. A speed log
+    alone over 12 s at 400 Hz, the speed stepping between 0 and 60 rad/s: white noise
+    (0.5 rad/s) plus 1/f noise of the same size is excused as the sensor's, on four seeds;
+    white noise plus a 0.7-1.3 Hz ripple whose size grows with the speed (a wave's flow
+    through a propeller: fresh22's l14, once excused) is not."""
+    from types import SimpleNamespace
+
+    from circuitsim.loop.diagnose.describe import _follows, _own_noise
+
+    t = np.arange(4800) / 400.0
+    target = np.select([t < 2, t < 5, t < 8, t < 10], [20.0, 60.0, 35.0, 0.0], 50.0)
+    speed = np.zeros_like(t)
+    for k in range(1, t.size):  # a first-order drive, 0.4 s
+        speed[k] = speed[k - 1] + (target[k] - speed[k - 1]) * (t[1] / 0.4)
+    setup = SimpleNamespace(record=SimpleNamespace(t=t), probes=["speed"])
+    for seed in range(4):
+        rng = np.random.default_rng(seed)
+        white = rng.normal(0.0, 0.5, t.size)
+        f = np.fft.rfftfreq(t.size, t[1])
+        pink = np.fft.irfft(np.fft.rfft(rng.normal(size=t.size)) /
+                            np.sqrt(np.maximum(f, f[1])), t.size)
+        ripple = 0.9 * speed / 60.0 * np.sin(2 * np.pi * (0.7 + 0.01 * speed) * t + seed)
+        for r, excused in ((white + 0.5 * pink / np.std(pink), True), (white + ripple, False)):
+            state = SimpleNamespace(fit=SimpleNamespace(sim={"speed": speed},
+                                                        residuals={"speed": r}))
+            entry = {"structured_share": 0.01, "white_after_prewhitening": False,
+                     "rms_over_noise": float(np.std(r) / 0.5),
+                     "follows": _follows(setup, state, r, 0.5)}
+            assert ("speed" in _own_noise(setup, state, {"speed": entry})) is excused, seed
+
+
 def test_what_stays_beside_a_rejected_stand_in_must_explain_half_the_structure_alone(
         monkeypatch):
     """The end stage: an effect rejected as a stand-in (its law does not hold) is taken out,
