@@ -207,7 +207,7 @@ def explained_and_left(setup: Setup, before: ModelState, after: ModelState,
     part = after.whitened(setup, whiten)
     own = sum((old[p] - part[p]) * np.asarray(whole.fit.residuals[p]).size / max(full[p], 1e-300)
               for p in setup.probes)
-    return own, gain + left - own
+    return own, max(gain + left - own, 0.0)  # a survivor may fit more than the whole did
 
 
 def _whitened_both(setup: Setup, before: ModelState, after: ModelState

@@ -33,7 +33,7 @@ from __future__ import annotations
 import itertools
 import math
 import time
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
 import numpy as np
@@ -339,7 +339,9 @@ def _distinct(state: ModelState, proposals: list, log: dict[str, Any]) -> list:
     return _first_of_twins(proposals, signal, _same_current, log.setdefault("twins", {}))
 
 
-def _first_of_twins(items: list, signal, same, twins: dict[str, list[str]]) -> list:
+def _first_of_twins(items: list, signal: Callable[[Any], tuple[str, str, np.ndarray] | None],
+                    same: Callable[[np.ndarray, np.ndarray], bool],
+                    twins: dict[str, list[str]]) -> list:
     """``items`` in order without those whose ``signal(item)`` -- (key, kind, signal) or
     None for an item that has no twin -- is ``same`` as that of an earlier item of its
     kind: each is named in ``twins`` under the key of the one kept."""
