@@ -296,6 +296,12 @@ def test_component_parameter_and_bounds(dc_motor):
         res = fit_record(dc_motor, rec, ["Rw.R"], params={"Rw.R": 1.2},
                          bounds={"Rw.R": (1.1, 2.0)})
     assert res.estimate["Rw.R"] == pytest.approx(1.1, rel=1e-6)
+    # a start on the bound, a rounding below it (as a screen's clipped start comes back
+    # through the netlist's arithmetic), is the bound, not an error
+    with pytest.warns(FitWarning, match="ended at a bound"):
+        res = fit_record(dc_motor, rec, ["Rw.R"], params={"Rw.R": 1.1 * (1 - 4e-16)},
+                         bounds={"Rw.R": (1.1, 2.0)})
+    assert res.estimate["Rw.R"] == pytest.approx(1.1, rel=1e-6)
 
 
 def test_fit_input_errors(dc_motor):

@@ -60,6 +60,9 @@ class Candidate:
     # grid of ``grid`` values of its first parameter instead)
     steps: Mapping[str, float] = field(default_factory=dict)
     grid: tuple[float, ...] = ()
+    # with a ``grid``: whether its slope at null is screened as well (the better of the two
+    # is kept), for an effect the slope sees when small and misjudges when large
+    slope: bool = False
     # free parameters that shape the effect (a speed, a time constant) rather than size it:
     # invisible while the size is at its null, so the screen keeps them at their start (one
     # candidate per start) and only the refit moves them
@@ -473,6 +476,12 @@ def _component_laws(net: Netlist, duration: float | None = None) -> list[Candida
 COUPLINGS = ("spring", "rotational_spring", "spring_damper")
 #: [rad] the largest play a coupling is given: half a turn is a loose part, not a play
 GAP_MAX = 3.14
+#: [rad] the plays a backlash is screened at. Its response is far from linear in the gap:
+#: a play narrower than the coupling's twist only shifts the contact, a wider one lets the
+#: sides part at each reversal and run free through it, which no slope at gap 0 foresees
+#: (fresh23's aa04: a 0.3 rad slack cable, screened from its slope at 1e-3 rad, never reached
+#: the refit). Below the grid the slope screens it (fresh2's g03, a play of 2.4e-5 rad).
+GAP_GRID = (1.0, 0.3, 0.1, 0.03, 0.01, 0.003)
 
 
 def _couplings(net: Netlist) -> list[Candidate]:
@@ -486,7 +495,8 @@ def _couplings(net: Netlist) -> list[Candidate]:
             "backlash", c.name, {g: (0.0, 0.0, GAP_MAX)}, {},
             f"a play (backlash) of total width gap in the coupling {c.name}: no torque "
             f"while the twist is within gap/2",
-            lambda r, n=c.name, g=g: _backlash(r, n, g), steps={g: 1e-3}))
+            lambda r, n=c.name, g=g: _backlash(r, n, g), steps={g: 1e-3}, grid=GAP_GRID,
+            slope=True))
     return out
 
 

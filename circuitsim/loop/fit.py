@@ -243,7 +243,12 @@ def _space(model, free: Sequence[str], params: Mapping[str, float],
         if n not in bounds:
             continue
         a, b = sorted(float(v) for v in bounds[n])
-        if not a <= start[k] <= b:
+        # a start placed on a bound comes back through the netlist's arithmetic a rounding
+        # off it (an inertia correction screened to its floor, -0.9 -> -0.9 - 1e-16)
+        edge = 1e-9 * max(abs(a), abs(b), 1e-300)
+        if a - edge <= start[k] <= b + edge:
+            start[k] = min(max(start[k], a), b)
+        else:
             raise FitError(f"the start value of {n} ({start[k]:g}) is outside its bounds "
                            f"[{a:g}, {b:g}]; --set {n}=... inside them")
         if log[k]:

@@ -168,8 +168,8 @@ def screen_many(setup: Setup, state: ModelState, proposals: list[Proposal],
     cannot be built or run, each is screened alone.
     """
     joint = [p for p in proposals if p.candidate.effect not in SENSOR_LAWS
-             and not p.candidate.grid]
-    rest = [p for p in proposals if p not in joint]
+             and (not p.candidate.grid or p.candidate.slope)]
+    rest = [p for p in proposals if p not in joint or p.candidate.grid]
     # compiled ahead where a second core can, while this process compiles the joint model:
     # the grid-screened topologies, needed next (not the candidates' own: which of them the
     # refits need is known after the screen, and a guess would compete with this process)
@@ -178,7 +178,7 @@ def screen_many(setup: Setup, state: ModelState, proposals: list[Proposal],
     runs, model, members = _joint_runs(setup, state, joint) if len(joint) > 1 else (None,) * 3
     if runs is None:
         rest, joint = proposals, []
-    out = []
+    out: list[Screen | None] = []
     for prop in rest:
         setup.log(f"screening {prop.candidate.key}")
         fn = _alternatives(projector(prop))[0]
@@ -192,6 +192,22 @@ def screen_many(setup: Setup, state: ModelState, proposals: list[Proposal],
                             _null_params(state, joint), _columns(runs, members, accepted, fn))
                  for fn in _alternatives(projector(prop))]
         out.append(_preferred([v for v in views if v is not None], margin))
+    return _better_of_two(out)
+
+
+def _better_of_two(screens: list[Screen | None]) -> list[Screen | None]:
+    """One screen per proposal: of a candidate screened both on its grid and by its slope
+    (``Candidate.slope``), the one that explains the larger share."""
+    where: dict[int, int] = {}
+    out: list[Screen | None] = []
+    for s in screens:
+        k = where.get(id(s.proposal)) if s is not None else None
+        if s is not None and k is None:
+            where[id(s.proposal)] = len(out)
+        if k is None:
+            out.append(s)
+        elif s.share > out[k].share:
+            out[k] = s
     return out
 
 
