@@ -304,6 +304,22 @@ def test_component_parameter_and_bounds(dc_motor):
     assert res.estimate["Rw.R"] == pytest.approx(1.1, rel=1e-6)
 
 
+def test_a_parameter_at_its_bound_maps_back_onto_it_exactly(dc_motor):
+    """z at its bound maps back to the bound itself, not a rounding beyond it: a refit
+    from an estimate that ended at its bound then starts on it (fresh15's x08 stopped on a
+    start a rounding outside, refused by the least squares)."""
+    from circuitsim.loop.fit import _space
+
+    # starts and bounds where the map back rounds past the bound (found by a random search)
+    for start, bounds in ((5.419197590288426, (2.7822896815744103, 8.0)),
+                          (3.004121786468474, (0.7055245365041637, 4.0)),
+                          (0.3, (0.0, math.inf))):
+        sp = _space(dc_motor, ["Rw.R"], {"Rw.R": start}, {"Rw.R": bounds})
+        assert sp.theta(sp.lo)[0] == bounds[0]
+        if math.isfinite(bounds[1]):
+            assert sp.theta(sp.hi)[0] == bounds[1]
+
+
 def test_fit_input_errors(dc_motor):
     t = np.linspace(0.0, 0.01, 101)
     rec = Record(t, _truth_record(dc_motor, t, ["i"]))

@@ -200,10 +200,15 @@ class _Space:
     scale: np.ndarray
     lo: np.ndarray
     hi: np.ndarray
+    # the bounds in the parameters' own units (-inf, inf where none): z at its bound maps
+    # back a rounding beyond it, which a later fit from these values would refuse
+    floor: np.ndarray | None = None
+    ceil: np.ndarray | None = None
 
     def theta(self, z: np.ndarray) -> np.ndarray:
-        return np.where(self.log, self.start * np.exp(np.where(self.log, z, 0.0)),
-                        self.start + self.scale * z)
+        th = np.where(self.log, self.start * np.exp(np.where(self.log, z, 0.0)),
+                      self.start + self.scale * z)
+        return th if self.floor is None else np.clip(th, self.floor, self.ceil)
 
     def dtheta(self, z: np.ndarray) -> np.ndarray:
         return np.where(self.log, self.theta(z), self.scale)
@@ -239,15 +244,18 @@ def _space(model, free: Sequence[str], params: Mapping[str, float],
     scale = np.ones(len(free))
     lo = np.where(log, -LOG_SPAN, -np.inf)
     hi = np.where(log, LOG_SPAN, np.inf)
+    floor, ceil = np.full(len(free), -np.inf), np.full(len(free), np.inf)
     for k, n in enumerate(free):
         if n not in bounds:
             continue
         a, b = sorted(float(v) for v in bounds[n])
+        floor[k], ceil[k] = a, b
         # a start placed on a bound comes back through the netlist's arithmetic a rounding
         # off it (an inertia correction screened to its floor, -0.9 -> -0.9 - 1e-16)
-        edge = 1e-9 * max(abs(a), abs(b), 1e-300)
+        edge = 1e-9 * max((abs(v) for v in (a, b) if math.isfinite(v)), default=0.0)
         if a - edge <= start[k] <= b + edge:
             start[k] = min(max(start[k], a), b)
+            log[k] = start[k] != 0.0  # a start clipped to a zero bound has no magnitude
         else:
             raise FitError(f"the start value of {n} ({start[k]:g}) is outside its bounds "
                            f"[{a:g}, {b:g}]; --set {n}=... inside them")
@@ -266,7 +274,7 @@ def _space(model, free: Sequence[str], params: Mapping[str, float],
     # least_squares needs a strictly feasible start
     lo = np.minimum(lo, -1e-12)
     hi = np.maximum(hi, 1e-12)
-    return _Space(tuple(free), start, log, scale, lo, hi)
+    return _Space(tuple(free), start, log, scale, lo, hi, floor, ceil)
 
 
 def _calibrate(space: _Space, fun: Callable[[np.ndarray], np.ndarray], z0: np.ndarray,
@@ -308,8 +316,8 @@ def _calibrate(space: _Space, fun: Callable[[np.ndarray], np.ndarray], z0: np.nd
         if bounds and name in bounds:
             a, b = sorted(float(v) for v in bounds[name])
             lo[k], hi[k] = (a - space.start[k]) / scale[k], (b - space.start[k]) / scale[k]
-    return _Space(space.names, space.start, space.log, scale,
-                  np.minimum(lo, -1e-12), np.maximum(hi, 1e-12))
+    return dataclasses.replace(space, scale=scale, lo=np.minimum(lo, -1e-12),
+                               hi=np.maximum(hi, 1e-12))
 
 
 # ------------------------------------------------------------------- least squares core
