@@ -771,6 +771,37 @@ def test_an_effect_whose_parameters_are_not_constants_is_a_stand_in(monkeypatch)
     assert engine._unstable(setup, None, state, log) is state and not log["rejected"]
 
 
+def test_a_correction_whose_value_is_not_a_constant_is_a_stand_in_too(monkeypatch):
+    """Stage 5c tests a correction of a declared value as it tests a new effect: a declared
+    inertia that is off is off by one factor over the whole record. One whose per-quarter
+    values gain past the margin (b12: the pump's inertia +341 % beside a seized bearing) is
+    kept out and said so; a stable one stays."""
+    from types import SimpleNamespace
+
+    from circuitsim.loop.diagnose import engine
+    from circuitsim.loop.diagnose.context import Choice, ModelState
+    from circuitsim.loop.diagnose.stability import STABLE_SHARE, Stability
+
+    inertia = SimpleNamespace(effect="inertia", target="Jp", key="inertia:Jp",
+                              free={"inertia_Jp_dJ": (0.0, -0.9, 10.0)})
+    monkeypatch.setattr(engine, "_without",
+                        lambda setup, state, keep: ModelState(None, None, [], {}, None, {},
+                                                              keep))
+    monkeypatch.setattr(engine, "explained_and_left",
+                        lambda setup, before, after, whole=None: (1.0, 0.0))
+    setup = SimpleNamespace(log=lambda s: None)
+    state = ModelState(None, None, [], {}, None, {}, [Choice(inertia, True)])
+    for gain, kept in ((STABLE_SHARE * 1000 + 1, False), (STABLE_SHARE * 1000 - 1, True)):
+        monkeypatch.setattr(engine, "stability",
+                            lambda s, st, c, own, g=gain: Stability(-900.0, g, 1000.0))
+        log = {"rejected": [], "trials": {"inertia:Jp": SimpleNamespace(gain=1000.0)}}
+        declared = ModelState(None, None, [], {}, None, {}, [])
+        out = engine._unstable(setup, declared, state, log)
+        assert bool(out.chosen) == kept, gain
+        assert kept or ("inertia on Jp" in log["stand_ins"] and
+                        [r["effect"] for r in log["rejected"]] == ["inertia"])
+
+
 def test_a_line_is_named_an_order_when_locked_to_a_shaft_that_changes_speed():
     """describe._Locking: a shaft runs up to 40 rev/s, holds, and reverses to -25 rev/s. A
     ripple at order 3 of its angle, whose time line sits at 120 Hz while it holds, is named
