@@ -800,6 +800,13 @@ def test_a_correction_whose_value_is_not_a_constant_is_a_stand_in_too(monkeypatc
         assert bool(out.chosen) == kept, gain
         assert kept or ("inertia on Jp" in log["stand_ins"] and
                         [r["effect"] for r in log["rejected"]] == ["inertia"])
+        # after a stage before took out stand-ins, the correction that stayed is tested too
+        log = {"rejected": [], "stand_ins": "a partial stand-in: x",
+               "trials": {"inertia:Jp": SimpleNamespace(gain=1000.0)}}
+        out = engine._unstable(setup, declared, state, log)
+        assert bool(out.chosen) == kept, gain
+        assert log["stand_ins"].startswith("a partial stand-in: x")
+        assert kept or "; and a stand-in: inertia on Jp" in log["stand_ins"]
 
 
 def test_a_line_is_named_an_order_when_locked_to_a_shaft_that_changes_speed():

@@ -953,8 +953,11 @@ def _unstable(setup: Setup, state0: ModelState, state: ModelState, log: dict[str
     outside the catalog only approximately -- a warm-up of the winding in place of an
     armature reaction, a viscous friction in place of an iron loss, an inertia in place of a
     seized bearing. It is reported as a stand-in and kept out of the netlist; the others
-    stay, and are tested again without it (alone, one may now carry what it did)."""
-    if "stand_ins" in log:
+    stay, and are tested again without it (alone, one may now carry what it did). After
+    stand-ins taken out by the stages before, the corrections that stayed beside them are
+    tested (aa14: the pane's inertia +69 % beside a seal's stiction)."""
+    earlier = log.get("stand_ins")
+    if earlier is not None and not any(c.correction for c in state.chosen):
         return state
     found: list[tuple[Choice, Any]] = []
     whole = state
@@ -997,6 +1000,8 @@ def _unstable(setup: Setup, state0: ModelState, state: ModelState, log: dict[str
     state = _stand_ins(setup, state0, state, log, whole)
     if log["stand_ins"] != why:
         log["stand_ins"] = f"{why}; without it, {log['stand_ins']}"
+    if earlier is not None:
+        log["stand_ins"] = f"{earlier}; and {log['stand_ins']}"
     return state
 
 
