@@ -250,8 +250,8 @@ def _space(model, free: Sequence[str], params: Mapping[str, float],
             continue
         a, b = sorted(float(v) for v in bounds[n])
         floor[k], ceil[k] = a, b
-        # a start placed on a bound comes back through the netlist's arithmetic a rounding
-        # off it (an inertia correction screened to its floor, -0.9 -> -0.9 - 1e-16)
+        # a start placed on a bound may arrive a rounding off it (aa04's inertia correction,
+        # screened to its floor of -0.9, was refused as outside [-0.9, 10])
         edge = 1e-9 * max((abs(v) for v in (a, b) if math.isfinite(v)), default=0.0)
         if a - edge <= start[k] <= b + edge:
             start[k] = min(max(start[k], a), b)
