@@ -195,20 +195,16 @@ def screen_many(setup: Setup, state: ModelState, proposals: list[Proposal],
     return _better_of_two(out)
 
 
-def _better_of_two(screens: list[Screen | None]) -> list[Screen | None]:
-    """One screen per proposal: of a candidate screened both on its grid and by its slope
-    (``Candidate.slope``), the one that explains the larger share."""
-    where: dict[int, int] = {}
-    out: list[Screen | None] = []
+def _better_of_two(screens: list[Screen | None]) -> list[Screen]:
+    """The screens that ran, one per proposal, in order: of a candidate screened both on
+    its grid and by its slope (``Candidate.slope``), the one that explains the larger
+    share."""
+    best: dict[int, Screen] = {}
     for s in screens:
-        k = where.get(id(s.proposal)) if s is not None else None
-        if s is not None and k is None:
-            where[id(s.proposal)] = len(out)
-        if k is None:
-            out.append(s)
-        elif s.share > out[k].share:
-            out[k] = s
-    return out
+        if s is not None and (id(s.proposal) not in best or
+                              s.share > best[id(s.proposal)].share):
+            best[id(s.proposal)] = s  # a dict keeps the first place of a key
+    return list(best.values())
 
 
 def _preferred(views: list[Screen], margin: float) -> Screen | None:
