@@ -1497,3 +1497,77 @@ def test_what_stays_beside_a_rejected_stand_in_must_explain_half_the_structure_a
     log = {"rejected": [], "trials": {}}
     assert eng._unstable(setup, state0, both, log) is alone
     assert "without it" not in log["stand_ins"]
+
+
+def test_a_misfit_left_where_the_effect_acts_is_found_and_one_elsewhere_is_not():
+    """where.follows_columns: a speed ramps up and down in bursts; a delay's sensitivity is
+    its rate of change. A misfit that lives where the speed changes (a lag that is no pure
+    delay) ranks with the sensitivity's power over the windows; one that lives where the
+    speed holds does not; a sensitivity the same in every window ranks nothing."""
+    from circuitsim.loop.diagnose.describe import FOLLOW_RHO
+    from circuitsim.loop.diagnose.where import follows_columns
+
+    t = np.arange(20000) / 10000.0
+    rate = np.where(np.sin(2 * np.pi * 1.3 * t) > 0.3, 400.0, 0.0) * np.sin(2 * np.pi * 7 * t)
+    column = {"speed": rate}
+    sigma = 0.2
+    noise = np.random.default_rng(3).normal(0.0, sigma, t.size)
+    # a misfit of twice the noise's size where the delay acts, by the rate's own mask
+    there = noise + 2 * sigma * (np.abs(rate) > 0) * np.sin(2 * np.pi * 45 * t)
+    elsewhere = noise + 2 * sigma * (rate == 0) * np.sin(2 * np.pi * 45 * t)
+    rho_there = follows_columns(there, sigma, [column], "speed")
+    rho_elsewhere = follows_columns(elsewhere, sigma, [column], "speed")
+    assert rho_there is not None and rho_there >= FOLLOW_RHO
+    assert rho_elsewhere is not None and rho_elsewhere < 0.0
+    # the sum over two parameters' columns, each at unit energy, ranks as one does
+    assert follows_columns(there, sigma, [column, {"speed": 1e3 * rate}], "speed") == \
+        pytest.approx(rho_there)
+    assert follows_columns(there, sigma, [{"speed": np.ones_like(t)}], "speed") is None
+    assert follows_columns(noise * 0.0, sigma, [column], "speed") is None
+
+
+def test_an_effect_that_leaves_its_misfit_where_it_acts_is_a_stand_in(monkeypatch):
+    """Stage 5d (engine._where): with structure left in a probe, the effect whose
+    sensitivity ranks with it (the flagged verdict) is kept out and said so, the other
+    stays; with no structure left the stage asks nothing."""
+    from types import SimpleNamespace
+
+    from circuitsim.loop.diagnose import engine
+    from circuitsim.loop.diagnose.context import Choice, ModelState
+    from circuitsim.loop.diagnose.where import Where
+
+    def effect(name):
+        return SimpleNamespace(effect=name, target="x", key=name, free={name: (0.0, 0, 1)})
+
+    delay, offset = effect("sensor-delay"), effect("sensor-offset")
+    verdicts = {"sensor-delay": Where("speed", 0.93), "sensor-offset": Where("speed", 0.2)}
+    asked: list[str] = []
+
+    def where_it_acts(setup, state, candidate, probes):
+        asked.append(candidate.key)
+        assert probes == ["speed"]
+        return verdicts[candidate.key]
+
+    monkeypatch.setattr(engine, "where_it_acts", where_it_acts)
+    monkeypatch.setattr(engine, "_without",
+                        lambda setup, state, keep: ModelState(None, None, [], {}, None, {},
+                                                              keep))
+    monkeypatch.setattr(engine, "explained_and_left",
+                        lambda setup, before, after, whole=None: (1.0, 0.0))
+    structure = {"structure": True, "probes": {"speed": {}}}
+    monkeypatch.setattr(engine, "remaining", lambda setup, state, stand_in=False: structure)
+    setup = SimpleNamespace(log=lambda s: None)
+    state = ModelState(None, None, [], {}, None, {}, [Choice(delay), Choice(offset)])
+    log = {"rejected": []}
+    out = engine._where(setup, None, state, log)
+    assert [c.candidate.key for c in out.chosen] == ["sensor-offset"]
+    assert [r["effect"] for r in log["rejected"]] == ["sensor-delay"]
+    assert "sensor-delay on x" in log["stand_ins"] and "rank correlation 0.93" in \
+        log["stand_ins"] and "sensor-offset" not in log["stand_ins"]
+    assert log["where"]["sensor-offset"].rank_correlation == 0.2
+    # the same model on a record it explains down to the noise: nothing is asked
+    asked.clear()
+    structure["structure"], structure["probes"] = False, {}
+    log = {"rejected": []}
+    assert engine._where(setup, None, state, log) is state and not asked and \
+        "stand_ins" not in log

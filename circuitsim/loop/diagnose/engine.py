@@ -81,6 +81,7 @@ from circuitsim.loop.diagnose.screen import (
     screen_many,
 )
 from circuitsim.loop.diagnose.stability import stability
+from circuitsim.loop.diagnose.where import where_it_acts
 from circuitsim.loop.effects import candidates
 from circuitsim.solve import ahead
 from circuitsim.solve.route import serial_blas
@@ -136,6 +137,7 @@ def diagnose(netlist, record, free: Sequence[str] = (), *, probes: Sequence[str]
     state = _trades(setup, state0, state, log)
     state = _stand_ins(setup, state0, state, log)
     state = _unstable(setup, state0, state, log)
+    state = _where(setup, state0, state, log)
     # last: only the harmonics that stay are named, and a stand-in's orders cost nothing
     state = _neighbour_orders(setup, state, log)
     # what the search spent outside screening and refits: the backward step and swaps
@@ -1005,6 +1007,55 @@ def _unstable(setup: Setup, state0: ModelState, state: ModelState, log: dict[str
     return state
 
 
+def _where(setup: Setup, state0: ModelState, state: ModelState, log: dict[str, Any]
+           ) -> ModelState:
+    """Stage 5d: where a probe's final residual still holds structure, an effect or a
+    correction whose sensitivity is largest where that structure is (``where``) fits a cause
+    outside the catalog only where their shapes agree: a stand-in, kept out of the netlist
+    as ``_unstable``'s are. Those flagged go together; the rest are judged again without them
+    (the named-share rule) and tested again, as the residual has changed."""
+    found: list[tuple[Choice, Any]] = []
+    whole = state
+    while state.chosen:
+        rest = remaining(setup, state, stand_in="stand_ins" in log)
+        if not rest["structure"]:
+            break
+        flagged = []
+        for c in state.chosen:
+            verdict = where_it_acts(setup, state, c.candidate, list(rest["probes"]))
+            if verdict is not None:
+                log.setdefault("where", {})[c.candidate.key] = verdict
+                if verdict.flagged:
+                    flagged.append((c, verdict))
+        if not flagged:
+            break
+        keep = [c for c in state.chosen if all(c is not f for f, _ in flagged)]
+        reduced = _without(setup, state, keep) if keep else state0
+        if reduced is None:
+            setup.log("the model without the stand-in could not be refitted; it stays")
+            break
+        found += flagged
+        state = reduced
+    if not found:
+        return state
+    names = "; ".join(f"{c.candidate.effect} on {c.candidate.target} ({v.why()})"
+                      for c, v in found)
+    why = (f"a stand-in: {names}; it fits a cause outside the catalog only where their "
+           f"shapes agree; not accepted")
+    setup.log(why)
+    earlier = log.get("stand_ins")
+    log["stand_ins"] = why
+    for c, _ in found:
+        log["rejected"].append({"effect": c.candidate.effect, "target": c.candidate.target,
+                                "reason": why})
+    state = _stand_ins(setup, state0, state, log, whole)
+    if log["stand_ins"] != why:
+        log["stand_ins"] = f"{why}; without it, {log['stand_ins']}"
+    if earlier is not None:
+        log["stand_ins"] = f"{earlier}; and {log['stand_ins']}"
+    return state
+
+
 def _unstable_effects(setup: Setup, state: ModelState, log: dict[str, Any]
                       ) -> list[tuple[Choice, Any]]:
     """The effects and corrections of ``state`` whose parameters are unstable, with their
@@ -1108,6 +1159,8 @@ def report(setup: Setup, state0: ModelState, state: ModelState, log: dict[str, A
              "correction_of_declared_term": choice.correction,
              "stability": (log.get("stability", {}).get(c.key).as_dict()
                            if c.key in log.get("stability", {}) else None),
+             "where": (log["where"][c.key].as_dict() if c.key in log.get("where", {})
+                       else None),
              **_undetermined(c, final)})
         (corrections if choice.correction else accepted).append(entry)
     accepted = _merge_refinements(accepted)
