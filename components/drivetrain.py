@@ -270,16 +270,18 @@ class Clutch(TwoFlange):
 
 @register("backlash", "elasto_backlash")
 class Backlash(TwoFlange):
-    """Spring-damper with a gap (Modelica's ElastoBacklash): no torque while |phi_rel| <
-    gap/2, tau = c (phi_rel -+ gap/2) + d w_rel in contact (the damping never pulls the
-    sides together). A gap of at most GAP_EPS is the plain spring-damper, as in Modelica:
-    with no play there are no sides to part.
+    """Spring-damper with a gap (Modelica's ElastoBacklash): no torque while |phi_rel -
+    phi_rel0| < gap/2, tau = c (phi_rel - phi_rel0 -+ gap/2) + d w_rel in contact (the
+    damping never pulls the sides together). A gap of at most GAP_EPS is the plain
+    spring-damper, as in Modelica: with no play there are no sides to part.
 
     Parameters
     ----------
     gap : [rad] total play
     c : [N*m/rad] contact stiffness
     d : [N*m*s/rad] contact damping, default 0
+    phi_rel0 : [rad] the twist at the middle of the play (a prestressed coupling's
+        unstretched twist), default 0
     """
 
     GAP_EPS = 1e-10  # [rad] Modelica's bEps
@@ -287,15 +289,16 @@ class Backlash(TwoFlange):
     gap = Param("rad", "total play", nonnegative=True)
     c = Param("N*m/rad", "contact stiffness", positive=True)
     d = Param("N*m*s/rad", "contact damping", default=0.0, nonnegative=True)
+    phi_rel0 = Param("rad", "twist at the middle of the play", default=0.0)
 
     def equations(self, x):
         x.phi_rel = x.a.phi - x.b.phi
-        h = self.gap / 2
-        push = sp.Piecewise((self.c * (x.phi_rel - h) + self.d * x.w_rel, x.phi_rel > h),
-                            (self.c * (x.phi_rel + h) + self.d * x.w_rel, x.phi_rel < -h),
+        h, twist = self.gap / 2, x.phi_rel - self.phi_rel0
+        push = sp.Piecewise((self.c * (twist - h) + self.d * x.w_rel, twist > h),
+                            (self.c * (twist + h) + self.d * x.w_rel, twist < -h),
                             (0, True))
         # in contact the damper may slow the approach but never glue the sides; a relation
         # of parameters alone is evaluated as written (no event)
-        tau = sp.Piecewise((self.c * x.phi_rel + self.d * x.w_rel, self.gap <= self.GAP_EPS),
-                           (sp.Max(push, 0), x.phi_rel > h), (sp.Min(push, 0), True))
+        tau = sp.Piecewise((self.c * twist + self.d * x.w_rel, self.gap <= self.GAP_EPS),
+                           (sp.Max(push, 0), twist > h), (sp.Min(push, 0), True))
         return [x.tau - tau]

@@ -248,6 +248,36 @@ def test_backlash_patch_is_the_dead_zone_closed_form_and_exact_at_null(tmp_path)
     np.testing.assert_allclose(null["twist"], base["twist"], rtol=1e-6, atol=1e-9)
 
 
+
+def test_a_play_opens_about_a_prestressed_couplings_unstretched_twist():
+    """The same drive with the coupling prestressed (phi_rel0 = 30 mrad: at rest the spring
+    pushes by c phi_rel0): the play opens about phi_rel0, so a twist of 0 lies inside a play
+    of 0.1 rad and nothing is transmitted until the twist T t^2 / (2 J1) reaches phi_rel0 +
+    gap/2, at t_c = sqrt(2 J1 (phi_rel0 + gap/2) / T) (plus half the step's 1 ns rise). At
+    gap 0 it is the prestressed coupling as declared."""
+    net = cs.load(NETLISTS / "breadth" / "drivetrain.yaml")
+    raw = net.raw.copy()
+    raw.component_entry("Coupling")["phi_rel0"] = 0.03
+    net = build(raw)
+    cand = next(c for c in effects.candidates(net) if c.effect == "backlash")
+    assert cand.target == "Coupling"
+    (gap,) = cand.free
+    model = _compile(build(cand.apply(net.raw)))
+    j1, torque, g, p0, lag = 0.01, 1.0, 0.1, 0.03, 0.5e-9
+    t_c = np.sqrt(2 * j1 * (p0 + g / 2) / torque) + lag
+    t = np.linspace(0.0, 0.9 * t_c, 31)
+    res = model.simulate(stop=1.2 * t_c, t_eval=np.append(t, 1.2 * t_c), params={gap: g},
+                         rtol=1e-10, atol=1e-12)
+    w = torque * np.maximum(t - lag, 0.0) / j1
+    assert res["w_rotor"][:-1] == pytest.approx(w, rel=1e-8, abs=1e-9)
+    assert np.all(np.abs(res["w_load"][:-1]) < 1e-9)
+    assert res["w_load"][-1] > 1e-3  # in contact after t_c: the load follows
+    t = np.linspace(0.0, 0.2, 201)
+    base = _compile(net).simulate(stop=0.2, t_eval=t, rtol=1e-10, atol=1e-12)
+    null = model.simulate(stop=0.2, t_eval=t, rtol=1e-10, atol=1e-12)
+    assert np.ptp(base["twist"]) > 0.01  # the prestress moves the drive from t = 0
+    np.testing.assert_allclose(null["twist"], base["twist"], rtol=1e-6, atol=1e-9)
+
 def test_a_coupling_reads_no_shaft_angle_but_a_ripple_does():
     """Speed effects are compared on the waveform unless a law reads a shaft's angle itself:
     a spring reads the twist between two shafts (turning both alike changes nothing), a

@@ -488,7 +488,7 @@ def _couplings(net: Netlist) -> list[Candidate]:
     """A play (backlash) opening in a declared torsional coupling between two bodies."""
     out = []
     for c in _declared(net):
-        if c.type not in COUPLINGS or _prestressed(net, c.name):
+        if c.type not in COUPLINGS:
             continue
         g = _pname("backlash", c.name, "gap")
         out.append(Candidate(
@@ -500,18 +500,12 @@ def _couplings(net: Netlist) -> list[Candidate]:
     return out
 
 
-def _prestressed(net: Netlist, name: str) -> bool:
-    """A coupling written with an unstretched twist: the play would open about it, which
-    the backlash element does not take; not offered."""
-    entry = net.raw.component_entry(name) if net.raw is not None else {}
-    return entry.get("phi_rel0") not in (None, 0, 0.0, "0")
-
-
 def _backlash(raw: RawNetlist, name: str, gap: str) -> None:
     """Turn coupling ``name`` into a ``backlash`` of total play ``gap`` [rad] with its own
-    stiffness and damping: Modelica's ElastoBacklash (in contact c (twist -+ gap/2) +
-    d w_rel, the damper never gluing the sides; nothing inside the play), which is the
-    declared coupling exactly at gap 0."""
+    stiffness, damping and unstretched twist (the play opens about a prestressed
+    coupling's phi_rel0): Modelica's ElastoBacklash (in contact c (twist - phi_rel0 -+
+    gap/2) + d w_rel, the damper never gluing the sides; nothing inside the play), which is
+    the declared coupling exactly at gap 0."""
     e = raw.component_entry(name)
     e["type"] = "backlash"
     e["gap"] = gap
