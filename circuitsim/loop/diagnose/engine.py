@@ -137,9 +137,10 @@ def diagnose(netlist, record, free: Sequence[str] = (), *, probes: Sequence[str]
     state = _trades(setup, state0, state, log)
     state = _stand_ins(setup, state0, state, log)
     state = _unstable(setup, state0, state, log)
-    state = _where(setup, state0, state, log)
-    # last: only the harmonics that stay are named, and a stand-in's orders cost nothing
+    # only the harmonics that stay are named, and a stand-in's orders cost nothing
     state = _neighbour_orders(setup, state, log)
+    # last: the final model's residual is the one a person reads
+    state = _where(setup, state0, state, log)
     # what the search spent outside screening and refits: the backward step and swaps
     clock["revise"] = time.perf_counter() - start - sum(clock.values())
     clock["total"] = time.perf_counter() - start
@@ -1018,6 +1019,7 @@ def _where(setup: Setup, state0: ModelState, state: ModelState, log: dict[str, A
     whole = state
     while state.chosen:
         rest = remaining(setup, state, stand_in="stand_ins" in log)
+        log["described"] = (state, "stand_ins" in log, rest)  # the report's, if it stays
         if not rest["structure"]:
             break
         flagged = []
@@ -1172,7 +1174,9 @@ def report(setup: Setup, state0: ModelState, state: ModelState, log: dict[str, A
                 log["indistinct"].append(
                     f"{choice.candidate.key} is the same circuit as "
                     f"{', '.join(sorted(set(twins)))} ({why}): the data cannot tell them apart")
-    rest = remaining(setup, state, stand_in="stand_ins" in log)
+    state_of, stand_in, rest = log.get("described", (None, None, None))
+    if state_of is not state or stand_in != ("stand_ins" in log):
+        rest = remaining(setup, state, stand_in="stand_ins" in log)
     if "stand_ins" in log:  # what a catalog effect would have explained of it
         rest["note"] += f" ({log['stand_ins']})"
         rest["stand_ins"] = log["stand_ins"]
