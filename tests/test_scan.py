@@ -138,7 +138,7 @@ def test_step_responses_convolved_are_the_exact_sensitivity_of_a_linear_circuit(
     sites = scan.sites_of(build(state.raw))
     assert [(s.kind, s.where, s.shaft) for s in sites] == [("torque", "rotor", "rotor"),
                                                            ("voltage", "M", "rotor")]
-    base, kernels, onsets = scan._step_responses(setup, state, sites)
+    base, kernels, onsets, _, _ = scan._step_responses(setup, state, sites)
     phi, w = (np.asarray(base[f"rotor.{x}"], float) for x in ("phi", "w"))
     for site, effect, target in ((sites[0], "cogging", "rotor"),
                                  (sites[1], "emf-harmonic", "M")):
@@ -158,6 +158,56 @@ def test_step_responses_convolved_are_the_exact_sensitivity_of_a_linear_circuit(
                 err = np.linalg.norm(approx[p][onsets[0]:] - exact) / np.linalg.norm(exact)
                 assert err < 0.02, (effect, n, p, err)
 
+
+
+def test_the_exact_scan_agrees_with_the_linearised_one_on_a_linear_circuit(nets, monkeypatch):
+    """On a linear circuit the linearisation is exact: every order's exact promise (its sine
+    and cosine run through the circuit itself, ``scan._Exact``) matches the convolved step
+    responses' within 3 % (or 3 BIC units) where either is significant, order 7 is first in both,
+    and the check of the best three agrees, so the linearised promises are the ones used."""
+    setup, state = _fitted(nets[12.0, 0.0], _record(4e-4, seed=2))
+    seen: list = []
+    checked = scan._Exact.checked
+
+    def spy(self, site, margin, promises):
+        out = checked(self, site, margin, promises)
+        seen.append((self, site, promises, out))
+        return out
+
+    monkeypatch.setattr(scan._Exact, "checked", spy)
+    assert scan.orders_by_gain(setup, state, BIC_MARGIN)["rotor"][0] == ORDER
+    exact, site, approx, used = next(x for x in seen if x[1].kind == "torque")
+    assert used is approx  # the check agreed
+    scanned = [k + 1 for k in range(approx.size) if np.isfinite(approx[k])]
+    full = exact.promises(site, scanned, approx.size)
+    assert int(np.argmax(full)) + 1 == ORDER and approx[ORDER - 1] > 100
+    big = [k for k in scanned if max(approx[k - 1], full[k - 1]) > 2 * BIC_MARGIN]
+    for k in big:
+        assert full[k - 1] == pytest.approx(approx[k - 1], rel=0.03, abs=3.0), k
+
+
+def test_the_linearised_scan_is_trusted_only_where_its_best_orders_hold():
+    """scan._check on the best three orders (the linearised best first): within a factor 2
+    and in the same order it agrees; an order the exact columns rank 10 % above the first,
+    or one the linearisation underestimates by over 2, hides a better order ("under": all
+    orders are then scored exactly); promises only too high are a leak ("over"); orders
+    below the margin on both counts are not judged."""
+    m = BIC_MARGIN
+    approx = np.full(10, -np.inf)
+    approx[[0, 5, 6]] = [300.0, 200.0, 150.0]  # orders 1, 6, 7
+    top = [1, 6, 7]
+    exact = approx.copy()
+    assert scan._check(approx, exact * 1.4, top, m) == "agrees"
+    assert scan._check(approx, exact * 0.6, top, m) == "agrees"
+    exact[6] = 340.0  # order 7: 2.3 times its promise and above the first
+    assert scan._check(approx, exact, top, m) == "under"
+    exact = approx.copy()
+    exact[5] = 340.0  # order 6: within 2 times, but 13 % above the first
+    assert scan._check(approx, exact, top, m) == "under"
+    assert scan._check(approx, np.where(np.isfinite(approx), -20.0, -np.inf), top, m) == "over"
+    assert scan._check(approx, approx / 3.0, top, m) == "over"  # all three times too high
+    quiet = np.where(np.isfinite(approx), 5.0, -np.inf)
+    assert scan._check(quiet, quiet * -3.0, top, m) == "agrees"
 
 @pytest.mark.parametrize(("tau_c", "start"), [(0.0, 0), (1e-2, 0), (0.0, 100)])
 def test_the_scan_ranks_the_true_order_first_on_a_reversing_rotor(nets, tau_c, start):

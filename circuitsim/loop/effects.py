@@ -387,7 +387,11 @@ def _stribeck(node: str) -> list[Candidate]:
             f"a breakaway (Stribeck) peak of the friction on {node} at low speed",
             lambda r, n=node, i=i, law=law: add_part(r, {"name": f"SF{i}_{n}", "type": "btorque",
                                                      "shaft": n, "expr": law}),
-            steps={s_: 1e-4, ws: 1e-2 * w0}, shape=(ws,)))
+            steps={s_: 1e-4, ws: 1e-2 * w0}, shape=(ws,),
+            # a friction is the same all round a turn, and at every place of a travel
+            # shorter than one (a throttle plate's): its law is bent by the shaft's angle
+            # as a Coulomb friction's is; its speed dependence is its own shape
+            law=Law(("torque", node), law, ((f"{node}.phi", "cos"), (f"{node}.phi", "sin")))))
     return out
 
 
