@@ -986,11 +986,23 @@ def _unstable(setup: Setup, state0: ModelState, state: ModelState, log: dict[str
         state = reduced
     if not found:
         return state
+    return _rejected_as_stand_ins(
+        setup, state0, state, whole, log, found,
+        "a physical effect's parameters are constants of the record and its law holds over "
+        "the whole of it, so this fits a cause outside the catalog only approximately")
+
+
+def _rejected_as_stand_ins(setup: Setup, state0: ModelState, state: ModelState,
+                           whole: ModelState, log: dict[str, Any],
+                           found: list[tuple[Choice, Any]], reason: str) -> ModelState:
+    """``state`` (the model without the ``found`` stand-ins, each with its verdict) after
+    the stand-ins are reported and rejected for ``reason``, the verdicts' words before it,
+    and what stays is judged again by the named-share rule; the stand-ins' text follows the
+    stages' before it in ``log['stand_ins']``."""
+    earlier = log.get("stand_ins")
     names = "; ".join(f"{c.candidate.effect} on {c.candidate.target} ({v.why()})"
                       for c, v in found)
-    why = (f"a stand-in: {names}; a physical effect's parameters are constants of the "
-           f"record and its law holds over the whole of it, so this fits a cause outside the "
-           f"catalog only approximately; not accepted")
+    why = f"a stand-in: {names}; {reason}; not accepted"
     setup.log(why)
     log["stand_ins"] = why
     for c, _ in found:
@@ -1040,22 +1052,9 @@ def _where(setup: Setup, state0: ModelState, state: ModelState, log: dict[str, A
         state = reduced
     if not found:
         return state
-    names = "; ".join(f"{c.candidate.effect} on {c.candidate.target} ({v.why()})"
-                      for c, v in found)
-    why = (f"a stand-in: {names}; it fits a cause outside the catalog only where their "
-           f"shapes agree; not accepted")
-    setup.log(why)
-    earlier = log.get("stand_ins")
-    log["stand_ins"] = why
-    for c, _ in found:
-        log["rejected"].append({"effect": c.candidate.effect, "target": c.candidate.target,
-                                "reason": why})
-    state = _stand_ins(setup, state0, state, log, whole)
-    if log["stand_ins"] != why:
-        log["stand_ins"] = f"{why}; without it, {log['stand_ins']}"
-    if earlier is not None:
-        log["stand_ins"] = f"{earlier}; and {log['stand_ins']}"
-    return state
+    return _rejected_as_stand_ins(
+        setup, state0, state, whole, log, found,
+        "it fits a cause outside the catalog only where their shapes agree")
 
 
 def _unstable_effects(setup: Setup, state: ModelState, log: dict[str, Any]
