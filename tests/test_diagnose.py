@@ -1571,3 +1571,18 @@ def test_an_effect_that_leaves_its_misfit_where_it_acts_is_a_stand_in(monkeypatc
     log = {"rejected": []}
     assert engine._where(setup, None, state, log) is state and not asked and \
         "stand_ins" not in log
+
+
+def test_clock_hint_only_for_a_gross_misfit_on_a_late_clock():
+    """The report asks to check the record's clock only when the final model still misses it
+    by at least GROSS_MISFIT of its spread AND the record starts later than its own length;
+    a good fit on a late clock, or a gross misfit on a clock from 0, gets no such hint."""
+    from circuitsim.loop.diagnose.result import GROSS_MISFIT, clock_hints
+
+    late = 5.0 + np.linspace(0.0, 0.4, 101)
+    early = np.linspace(0.0, 0.4, 101)
+    (hint,) = clock_hints(late, 1.16)
+    assert "subtract 5 s" in hint and "116%" in hint
+    assert clock_hints(late, 0.9 * GROSS_MISFIT) == []
+    assert clock_hints(early, 1.16) == []
+    assert clock_hints(0.3 + early, 1.16) == []  # starts within its own length

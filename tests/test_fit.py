@@ -411,3 +411,20 @@ def test_fits_and_diagnoses_run_on_one_blas_thread():
     assert blas_threads() == before
     for fn in (diagnose, fit_record):  # both entries carry it
         assert fn.__wrapped__ is not None
+
+
+def test_smoothing_windows_kept_per_record_content():
+    """A record's windows are computed once and served again for the same times and columns;
+    a record whose samples differ gets windows of its own, equal to a fresh computation."""
+    from circuitsim.loop.fit import _smoothing_windows
+
+    t = np.linspace(0.0, 0.2, 4001)
+    x = np.sin(2 * np.pi * 50 * t) + 0.1 * t
+    W1 = smoothing_windows(t, [x])
+    assert smoothing_windows(t.copy(), [x.copy()]) is W1
+    y = np.sin(2 * np.pi * 200 * t)  # a faster ripple: shorter windows
+    W2 = smoothing_windows(t, [y])
+    assert W2 is not W1
+    fresh = _smoothing_windows(t, [y])
+    assert W2.shape == fresh.shape and W2.shape != W1.shape
+    np.testing.assert_array_equal(W2.toarray(), fresh.toarray())

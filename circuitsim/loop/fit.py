@@ -34,9 +34,12 @@ Top-level imports stay light (numpy only): the CLI imports this module on every 
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
+import hashlib
 import math
 import warnings
+from collections import OrderedDict
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -815,7 +818,33 @@ def _spread(x: np.ndarray) -> float:
                                                                       1.0)
 
 
+#: the windows of the last few records: a diagnosis refits one record some thirty times, and
+#: finding its strongest ripple (``_window_length``) costs more than a small model's fit
+_WINDOWS: OrderedDict[bytes, Any] = OrderedDict()
+_WINDOWS_KEPT = 4
+
+
 def smoothing_windows(t: np.ndarray, columns: Sequence[np.ndarray]):
+    """``_smoothing_windows`` of a record, kept for the record's next fit (``_WINDOWS``):
+    keyed by a digest of its times and columns, so a changed record is never served stale
+    windows. The matrix returned is shared: callers only multiply with it."""
+    digest = hashlib.blake2b(digest_size=20)
+    for x in (t, *columns):
+        a = np.ascontiguousarray(x, dtype=float)
+        digest.update(np.int64(a.size).tobytes())
+        digest.update(a.tobytes())
+    key = digest.digest()
+    W = _WINDOWS.get(key)
+    if W is None:
+        W = _WINDOWS[key] = _smoothing_windows(np.asarray(t, float), columns)
+    with contextlib.suppress(KeyError):  # another thread's fit may have dropped it meanwhile
+        _WINDOWS.move_to_end(key)
+        while len(_WINDOWS) > _WINDOWS_KEPT:
+            _WINDOWS.popitem(last=False)
+    return W
+
+
+def _smoothing_windows(t: np.ndarray, columns: Sequence[np.ndarray]):
     """Row-normalised Hann weights for the slow features of stage 1, as a sparse
     (n_windows, n_samples) matrix (scipy ``csr_array``: each sample lies in about two
     windows, so a long record costs two weights a sample, not one per window).

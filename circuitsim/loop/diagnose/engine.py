@@ -69,7 +69,7 @@ from circuitsim.loop.diagnose.residual import (
     noise_sigma,
     spread,
 )
-from circuitsim.loop.diagnose.result import Accepted, Diagnosis, DiagnosisError
+from circuitsim.loop.diagnose.result import Accepted, Diagnosis, DiagnosisError, clock_hints
 from circuitsim.loop.diagnose.scan import orders_by_gain, patched_raw
 from circuitsim.loop.diagnose.screen import (
     Proposal,
@@ -1186,4 +1186,4 @@ def report(setup: Setup, state0: ModelState, state: ModelState, log: dict[str, A
     return Diagnosis(fit0.error, final.error, dict(fit0.errors), dict(final.errors), accepted,
                      log["indistinct"], rest, analysis0, analysis1, raw, fit0, final,
                      setup.record, dict(clock), log["rejected"], corrections,
-                     dict(setup.weights))
+                     dict(setup.weights), hints=clock_hints(setup.record.t, final.error))

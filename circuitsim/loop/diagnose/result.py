@@ -47,6 +47,9 @@ class Diagnosis:
     corrections: list[Accepted] = field(default_factory=list)
     noise: dict[str, float] = field(default_factory=dict)
     reduction: Any = None  # loop.reduce.Reduction: the record as the diagnosis used it
+    #: what the user may check before reading the verdict (a record's clock that starts long
+    #: after the netlist's: ``engine._hints``)
+    hints: list[str] = field(default_factory=list)
 
     def as_dict(self) -> dict[str, Any]:
         return _clean({
@@ -62,6 +65,7 @@ class Diagnosis:
                              "evidence": a.evidence} for a in self.corrections],
             "noise": self.noise,
             "considered_not_accepted": self.rejected, "timings": self.timings,
+            "hints": self.hints,
             "final_fit": self.final_parameters(),
             **({"record": self.reduction.as_dict()} if self.reduction is not None else {}),
             "summary": self.summary(),
@@ -102,8 +106,30 @@ class Diagnosis:
         tail = ("; structure remains: " + self.remaining["note"]) if structure else ""
         if self.indistinct:  # a label the data cannot single out is said to be so
             tail = "; " + "; ".join(self.indistinct) + tail
+        hints = "".join(f"; check: {h}" for h in self.hints)
         return (f"{head}{fixes} (error {self.error_before:.4g} -> {self.error_after:.4g})"
-                f"{tail}")
+                f"{tail}{hints}")
+
+
+#: a final misfit [of the probes' spread] beyond which the record's clock is questioned when
+#: it starts long after the netlist's (``clock_hints``): above what a good model leaves on a
+#: real log (the ODrive's cogging, 0.36 after the effects), far above a synthetic record's
+GROSS_MISFIT = 0.5
+
+
+def clock_hints(t: np.ndarray, error: float) -> list[str]:
+    """What to check when the model, effects and all, still misses the record grossly
+    (``GROSS_MISFIT``) and the record's clock starts later than its own length: the netlist's
+    inputs act from t = 0, so a logger's clock that did not start with the experiment puts
+    every step of the model at the wrong time, and no effect can mend that."""
+    t0, length = float(t[0]), float(t[-1] - t[0])
+    if not (error >= GROSS_MISFIT and t0 > length):
+        return []
+    return [(f"the model still misses the record by {error:.0%} of its spread, and the "
+            f"record starts at t = {t0:.6g} s, after {t0 / length:.3g} times its own length: "
+            f"the model is simulated from t = 0 with the netlist's inputs. If the record's "
+            f"clock did not start with the netlist's, shift its time column (subtract "
+            f"{t0:.6g} s) or move the inputs' times")]
 
 
 def _caveat(a: Accepted) -> str:
