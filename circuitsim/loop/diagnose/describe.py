@@ -63,6 +63,12 @@ COHERENCE_SEGMENTS = 8
 #: and beside found effects) give +21 to +51; the coherence test could not see j10's, as no
 #: other probe's residual moves with it.
 FOLLOW_MODEL_BIC = 10.0
+#: A probe excused as its sensor's own coloured noise whose excess over its white noise is
+#: mostly one sinusoid -- this share of it or more -- has that line named in the note: mains
+#: hum or a PWM beat on a sensor's lead is no effect of the circuit, but a person wants to
+#: know it is there. A 1/f or AR(1) noise spreads its excess over many bins (its strongest
+#: holds about a tenth of it), so the share cannot come from a coloured noise alone.
+NOISE_LINE_SHARE = 0.5
 #: The band of a spread structure: the frequencies where its cumulative excess reaches these
 #: fractions (its middle half: a resonance's skirt reaches far, its middle half does not).
 SPREAD_BAND = (0.25, 0.75)
@@ -143,8 +149,29 @@ def _own_noise(setup: Setup, state: ModelState, probes: dict[str, Any]) -> dict[
         if chance > FOLLOW_P:
             out[p] = {"coherence_chance": min(chance, 1.0),
                       "white_after_prewhitening": e["white_after_prewhitening"],
-                      "rms_over_noise": e.get("rms_over_noise")}
+                      "rms_over_noise": e.get("rms_over_noise"),
+                      **_noise_line(t, res[p], setup.weights.get(p, 0.0))}
     return out
+
+
+def _noise_line(t: np.ndarray, r: np.ndarray, sigma: float) -> dict[str, Any]:
+    """``{"line": {frequency [Hz], amplitude [probe's unit], share [-]}}`` when one sinusoid
+    holds at least ``NOISE_LINE_SHARE`` of the residual's mean square above its white noise
+    ``sigma`` and turns at least three times over the record; else empty."""
+    from circuitsim.signal import dominant_ripple
+
+    excess = float(np.mean(np.square(r))) - sigma * sigma
+    if excess <= 0.0:
+        return {}
+    try:
+        h = dominant_ripple(t, r)
+    except ValueError:
+        return {}
+    share = 0.5 * h.amplitude ** 2 / excess
+    if h.frequency * float(t[-1] - t[0]) < 3.0 or share < NOISE_LINE_SHARE:
+        return {}
+    return {"line": {"frequency": float(h.frequency), "amplitude": float(h.amplitude),
+                     "share": min(share, 1.0)}}
 
 
 def _follows_model(setup: Setup, state: ModelState, res: dict[str, np.ndarray], p: str
@@ -507,9 +534,13 @@ def _model_text(entry: dict[str, Any]) -> str:
 
 def _note(probes: dict[str, Any], resolved: list[str] | None = None,
           coloured: dict[str, Any] | None = None) -> str:
+    hum = "".join(f"; {p}'s excess is mostly one line, {c['line']['frequency']:.4g} Hz "
+                  f"({c['line']['share']:.0%}): an interference at a fixed frequency (mains "
+                  f"hum, a PWM beat) reads so" for p, c in (coloured or {}).items()
+                  if "line" in c)
     own = (f" ({', '.join(coloured)}: otherwise noise, not white beyond its noise model, "
            f"and neither another probe nor the model's own signals follow it: not counted "
-           f"as structure)") if coloured else ""
+           f"as structure{hum})") if coloured else ""
     if not probes:
         if resolved:
             return (f"nothing significant remains: the model matches {', '.join(resolved)} to "
