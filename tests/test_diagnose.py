@@ -1440,7 +1440,7 @@ def test_a_lone_probes_residual_whose_power_rises_with_the_speed_is_no_sensor_no
     speed = np.zeros_like(t)
     for k in range(1, t.size):  # a first-order drive, 0.4 s
         speed[k] = speed[k - 1] + (target[k] - speed[k - 1]) * (t[1] / 0.4)
-    setup = SimpleNamespace(record=SimpleNamespace(t=t), probes=["speed"])
+    setup = SimpleNamespace(record=SimpleNamespace(t=t), probes=["speed"], weights={"speed": 0.5})
     for seed in range(4):
         rng = np.random.default_rng(seed)
         white = rng.normal(0.0, 0.5, t.size)
