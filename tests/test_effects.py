@@ -391,3 +391,32 @@ def test_a_law_bent_at_its_null_is_the_accepted_circuit():
     more = bent.simulate(stop=0.05, t_eval=t, params={b: 1e-4, **scale, names[0][0]: 0.1},
                          rtol=1e-10, atol=1e-12)
     assert np.all(more["speed"][10:] < base["speed"][10:])
+
+
+def test_an_emf_harmonics_companion_torque_at_one_is_the_energy_consistent_harmonic():
+    """law.bent_raw of a catalog EMF harmonic (a voltage alone) with its companion torque's
+    coefficient at 1 is the `emf` element's own energy-consistent harmonic (`ripple_torque`,
+    an independent implementation: the torque -(k + h sin(phi)) i beside the EMF); at 0 it
+    is the catalog's patch, which leaves the torque out and so does not conserve energy."""
+    from circuitsim.loop.diagnose.law import COMPANION, _names, bent_raw
+
+    net = cs.load(NETLISTS / "examples" / "dc_motor.yaml")
+    harm = next(c for c in effects.candidates(net, {"rotor": [1]})
+                if c.effect == "emf-harmonic" and c.fixed["order"] == 1)
+    a, b = harm.free  # the sine's and the cosine's coefficients [V s/rad]
+    h = 0.01
+    bent = _compile(build(bent_raw(harm.apply(net.raw), harm.law)))
+    scales = {n: 1.0 for _, _, n in _names(harm.law)}
+    t = np.linspace(0.0, 0.2, 201)
+    run = {"stop": 0.2, "t_eval": t, "rtol": 1e-10, "atol": 1e-12}
+    whole = bent.simulate(params={a: h, b: 0.0, **scales, COMPANION: 1.0}, **run)
+    voltage = bent.simulate(params={a: h, b: 0.0, **scales, COMPANION: 0.0}, **run)
+    raw = net.raw.copy()
+    raw.comps = [({**c[0], "harmonics": [{"order": 1, "slope": h, "offset": 0.0,
+                                          "phase": 0.0}], "ripple_torque": True}, *c[1:])
+                 if str(c[0]["name"]) == "M" else c for c in raw.comps]
+    ref = _compile(build(raw)).simulate(**run)
+    for p in ("speed", "i"):
+        span = float(np.ptp(ref[p]))
+        np.testing.assert_allclose(whole[p], ref[p], atol=1e-7 * span)
+        assert float(np.max(np.abs(voltage[p] - ref[p]))) > 1e-3 * span

@@ -38,11 +38,17 @@ class Law:
         driver it does not have (shape "abs": on |u|, "square": on u^2, "centred": on u
         about its mean, "cos" and "sin": of an angle u, once per turn). Empty for a probe:
         a sensor's law is bent on its reading, by shapes its kind fixes (``law``).
+    companion : (place, value) of a second action the effect's physics could carry and the
+        catalog's law leaves out, tried with a coefficient of null 0 beside the shapes: an
+        EMF harmonic's torque (a motor constant that varies with the angle, as an eccentric
+        rotor's does, acts on the torque as on the EMF; the catalog's harmonic is a voltage
+        alone, as a winding's or a sensor's ripple is). None: no such action.
     """
 
     place: tuple[str, str]
     value: str
     terms: tuple[tuple[str, str], ...]
+    companion: tuple[tuple[str, str], str] | None = None
 
 
 @dataclass(frozen=True)
@@ -247,7 +253,9 @@ def _converter_effects(net: Netlist, orders: Mapping[str, list[int]]) -> list[Ca
                 {"order": k}, f"an extra back-EMF harmonic of order {k} in {t}",
                 lambda r, t=t, k=k, v=v: insert_series(r, t, f"EH{k}_{t}", v),
                 steps={a: 1e-4, b: 1e-4},
-                law=Law(("series", t), v, ((f"{t}.i", "abs"), (f"{shaft}.w", "abs")))))
+                law=Law(("series", t), v, ((f"{t}.i", "abs"), (f"{shaft}.w", "abs")),
+                        (("torque", shaft),
+                         f"({a}*sin({k}*{shaft}.phi) + {b}*cos({k}*{shaft}.phi))*{t}.i"))))
     return out
 
 

@@ -17,7 +17,10 @@ exactly at a = 0. Their sensitivities come from one batched run of that circuit 
 dynamics: a torque that depends on the speed feeds back through the speed), with the
 effect's own. A sensor's law is bent on its reading alone: a gain's reading by its size, an
 offset by time and the reading's size, a delay's reading by its second and third
-derivatives, where a first-order lag or a tracking loop differ from a delay.
+derivatives, where a first-order lag or a tracking loop differ from a delay. A law may also
+name a companion action its physics could carry and the catalog leaves out
+(``effects.Law.companion``: an EMF harmonic's torque, which a motor constant varying with
+the angle has), tried beside the shapes with a coefficient of null 0 (``COMPANION``).
 
 A law that passes the BIC margin is a stand-in when the bend takes a fair share of what is
 left (``LAW_SHARE``) or when it asks for a fair part of the law itself (``LAW_RANGE``): a
@@ -101,6 +104,11 @@ LAW_RANGE = 0.1
 #: phase by (w tau)^3/12 (checked on sines: 0.079 with the reading's numerical derivatives)
 PURE_DELAY_BENDS = (0.0, 1.0 / 12.0)
 LAW_PREFIX = "law_bend"
+#: the coefficient of a law's companion action (``effects.Law.companion``), null 0: 1 is the
+#: whole of it (an EMF harmonic's torque: the power its EMF takes, returned on the shaft)
+COMPANION = f"{LAW_PREFIX}_t"
+#: how a companion is named among the bend's shapes (``_shapes``)
+COMPANION_WORD = "the torque its EMF's power implies on "
 
 
 @dataclass(frozen=True)
@@ -155,7 +163,10 @@ class LawTest:
         parts: list[tuple[float, str]] = []
         turns: dict[str, float] = {}
         for t, b in zip(self.terms, self.bends, strict=False):
-            if t.startswith(("cos(", "sin(")):
+            if t.startswith(COMPANION_WORD):
+                text = f"{t} ({b:+.0%} of it: a motor constant that varies with the angle)"
+                parts.append((abs(b), text))
+            elif t.startswith(("cos(", "sin(")):
                 turns[t[4:-1]] = float(np.hypot(turns.get(t[4:-1], 0.0), b))
             else:
                 parts.append((abs(b), f"{t} ({b:+.0%} where it is largest)"))
@@ -261,8 +272,6 @@ def bent_raw(raw: Any, law: Any, names: Sequence[tuple[str, str, str]] | None = 
     """``raw`` with the law's bend patched in: the effect's contribution ``law.value`` times
     the shapes, each times its new parameter (null 0), applied where the effect acts (None
     for a sensor's law, bent on its reading alone)."""
-    from circuitsim.loop.effects import add_part, insert_series
-
     if law.place[0] == "probe":
         return None
     names = names or _names(law)
@@ -273,16 +282,27 @@ def bent_raw(raw: Any, law: Any, names: Sequence[tuple[str, str, str]] | None = 
         for name, v in ((a, "0.0"), (c, "0.0"), (s, "1.0")):  # set at run time
             out.params[name] = (v, loc)
         parts.append(f"{a}*{_shape(kind, u, c, s)}")
-    expr = f"({law.value})*({' + '.join(parts)})"
-    where, target = law.place
-    name = f"LB_{target.replace('.', '_')}"
-    if where == "series":
-        insert_series(out, target, name, expr)
-    elif where == "torque":
-        add_part(out, {"name": name, "type": "btorque", "shaft": target, "expr": expr})
-    else:
-        add_part(out, {"name": name, "type": "bforce", "flange": target, "expr": expr})
+    _act(out, law.place, "LB", f"({law.value})*({' + '.join(parts)})")
+    if law.companion is not None:
+        out.params[COMPANION] = ("0.0", loc)
+        place, value = law.companion
+        _act(out, place, "LC", f"{COMPANION}*({value})")
     return out
+
+
+def _act(raw: Any, place: tuple[str, str], prefix: str, expr: str) -> None:
+    """Patch ``expr`` into ``raw`` where ``place`` says: in series with a component, as a
+    torque on a shaft or as a force on a flange."""
+    from circuitsim.loop.effects import add_part, insert_series
+
+    where, target = place
+    name = f"{prefix}_{target.replace('.', '_')}"
+    if where == "series":
+        insert_series(raw, target, name, expr)
+    elif where == "torque":
+        add_part(raw, {"name": name, "type": "btorque", "shaft": target, "expr": expr})
+    else:
+        add_part(raw, {"name": name, "type": "bforce", "flange": target, "expr": expr})
 
 
 def bend_of(setup: Setup, state: ModelState, candidate: Any,
@@ -310,8 +330,11 @@ def bend_of(setup: Setup, state: ModelState, candidate: Any,
     except CircuitsimError as exc:
         setup.log(f"  law of {candidate.key} not tested: the bent circuit fails ({exc})")
         return None
-    base = {**state.params, **scales, **{a: 0.0 for a, _, _ in names}}
-    steps = [*own_steps, *((a, BEND_STEP) for a, _, _ in names)]
+    companion = [COMPANION] if law.companion is not None else []
+    base = {**state.params, **scales, **{a: 0.0 for a, _, _ in names},
+            **dict.fromkeys(companion, 0.0)}
+    steps = [*own_steps, *((a, BEND_STEP) for a, _, _ in names),
+             *((c, BEND_STEP) for c in companion)]
     runs = simulate_many(setup, model, [base] + [{**base, n: base[n] + h} for n, h in steps])
     if any(r is None for r in runs):
         setup.log(f"  law of {candidate.key} not tested: a run of the bent circuit failed")
@@ -319,8 +342,9 @@ def bend_of(setup: Setup, state: ModelState, candidate: Any,
     b, *moved = runs
     cols = [{p: (np.asarray(r[p], float) - np.asarray(b[p], float)) / h for p in setup.probes}
             for r, (_, h) in zip(moved, steps, strict=True)]
-    return Bend(cols[:len(own_steps)], cols[len(own_steps):],
-                tuple(_word(kind, u) for u, kind in law.terms), True, tuple(shapes),
+    words = tuple(_word(kind, u) for u, kind in law.terms) + tuple(
+        COMPANION_WORD + law.companion[0][1] for _ in companion)
+    return Bend(cols[:len(own_steps)], cols[len(own_steps):], words, True, tuple(shapes),
                 "order" not in candidate.fixed)
 
 
@@ -368,7 +392,7 @@ def law_test(setup: Setup, state: ModelState, own: Columns, bend: Bend) -> LawTe
     level = tuple(float(np.mean(np.square(np.asarray(state.fit.residuals[p], float)
                                           / setup.weights[p]))) for p in setup.probes)
     spread = (_departure(setup, state, own, bend, bends) if bend.scales and dbic < -BIC_MARGIN
-              else spread_of(bends, bend.shapes))
+              else spread_of(bends[:len(bend.shapes)], bend.shapes))
     return LawTest(dbic, gain, bend.words, removed, bends, level, bend.relative, spread,
                    bend.ranged)
 
