@@ -1611,3 +1611,51 @@ def test_noise_line_named_for_hum_never_for_coloured_noise():
         pink = np.fft.irfft(spectrum, t.size)
         for coloured in (ar, pink / np.std(pink)):
             assert _noise_line(t, rng.normal(0, 1, t.size) + coloured, 1.0) == {}
+
+
+_SHAFT_LOAD = """
+title: a motor and its shaft's declared load
+parameters: {J: 2e-5 kg*m^2, B: 2e-4 N*m*s/rad, T: 0.03 N*m}
+components:
+  - {name: V1, type: V, p: a, n: gnd, V: 12 V}
+  - {name: Ra, type: R, p: a, n: b, R: 1 ohm}
+  - {name: M, type: emf, p: b, n: gnd, shaft: rotor, k_t: 0.02}
+  - {name: Js, type: inertia, shaft: rotor, J: J}
+  - {name: Bs, type: damper, shaft: rotor, b: B}
+  - {name: Fl, type: friction, shaft: rotor, tau_c: T, w_brk: 0.1}
+probes: {speed: rotor.w}
+"""
+
+
+def test_terms_that_scale_one_shafts_whole_load_by_one_factor_are_one_cause(tmp_path):
+    """factor.one_factor: an inertia correction, a viscous and a Coulomb friction on one
+    shaft, each +43 % of its declared term (a loss proportional to the torque carried, as
+    fresh28's af11), are flagged together with the common factor; the same three at +43 %,
+    +20 % and +43 %, or two of them alone, are not."""
+    from types import SimpleNamespace
+
+    from circuitsim.loop.diagnose.factor import one_factor
+
+    path = tmp_path / "load.yaml"
+    path.write_text(_SHAFT_LOAD)
+    net = cs.load(path)
+
+    def chosen(dj: float, b: float, c: float) -> tuple[list, dict]:
+        cands = [SimpleNamespace(effect="inertia", target="Js", free={"inertia_Js_dJ": 0}),
+                 SimpleNamespace(effect="viscous-friction", target="rotor",
+                                 free={"viscous_friction_rotor_b": 0}),
+                 SimpleNamespace(effect="coulomb-friction", target="rotor",
+                                 free={"coulomb_friction_rotor_c": 0})]
+        values = {"inertia_Js_dJ": dj, "viscous_friction_rotor_b": b,
+                  "coulomb_friction_rotor_c": c}
+        return [SimpleNamespace(candidate=k) for k in cands], values
+
+    terms, values = chosen(0.427, 0.43 * 2e-4, 0.428 * 0.03)
+    found = one_factor(net, terms, values)
+    assert len(found) == 3
+    assert all(abs(v.common - 0.4283) < 1e-3 and v.node == "rotor" for _, v in found)
+    assert "+43.0% to rotor's declared viscous drag" in found[1][1].why()
+    terms, values = chosen(0.427, 0.20 * 2e-4, 0.428 * 0.03)
+    assert one_factor(net, terms, values) == []
+    terms, values = chosen(0.427, 0.43 * 2e-4, 0.428 * 0.03)
+    assert one_factor(net, terms[1:], values) == []

@@ -57,6 +57,7 @@ from circuitsim.loop.diagnose.decide import (
     refit_trial,
 )
 from circuitsim.loop.diagnose.describe import remaining
+from circuitsim.loop.diagnose.factor import one_factor
 from circuitsim.loop.diagnose.law import bent_raw
 from circuitsim.loop.diagnose.netlist_out import _with_values
 from circuitsim.loop.diagnose.noise import delta_bic, whiteners_of
@@ -83,6 +84,7 @@ from circuitsim.loop.diagnose.screen import (
 from circuitsim.loop.diagnose.stability import stability
 from circuitsim.loop.diagnose.where import where_it_acts
 from circuitsim.loop.effects import candidates
+from circuitsim.netlist import build
 from circuitsim.solve import ahead
 from circuitsim.solve.route import serial_blas
 
@@ -137,6 +139,7 @@ def diagnose(netlist, record, free: Sequence[str] = (), *, probes: Sequence[str]
     state = _trades(setup, state0, state, log)
     state = _stand_ins(setup, state0, state, log)
     state = _unstable(setup, state0, state, log)
+    state = _one_factor(setup, state0, state, log)
     # only the harmonics that stay are named, and a stand-in's orders cost nothing
     state = _neighbour_orders(setup, state, log)
     # last: the final model's residual is the one a person reads
@@ -1018,6 +1021,35 @@ def _rejected_as_stand_ins(setup: Setup, state0: ModelState, state: ModelState,
     if earlier is not None:
         log["stand_ins"] = f"{earlier}; and {log['stand_ins']}"
     return state
+
+
+def _one_factor(setup: Setup, state0: ModelState, state: ModelState, log: dict[str, Any]
+                ) -> ModelState:
+    """Stage 5c': the terms found on one shaft that scale its declared inertia, drag and
+    Coulomb friction by one factor (``factor``) are one cause outside the catalog -- a loss
+    proportional to the torque carried to it, an efficiency -- and go together as stand-ins;
+    what stays is judged again, as after stage 5c."""
+    if state.base_raw is None or not state.chosen:
+        return state
+    try:
+        net = build(state.base_raw)
+    except CircuitsimError:
+        return state
+    found = one_factor(net, state.chosen, state.params)
+    if not found:
+        return state
+    keep = [c for c in state.chosen if all(c is not f for f, _ in found)]
+    reduced = _without(setup, state, keep) if keep else state0
+    if reduced is None:
+        setup.log("the model without the common factor's terms could not be refitted; "
+                  "they stay")
+        return state
+    node, common = found[0][1].node, found[0][1].common
+    return _rejected_as_stand_ins(
+        setup, state0, reduced, state, log, found,
+        f"together they scale {node}'s whole declared load by one factor, {common:+.1%}: "
+        f"one cause, a loss proportional to the torque carried to {node} (an efficiency), "
+        f"which the catalog does not hold")
 
 
 def _where(setup: Setup, state0: ModelState, state: ModelState, log: dict[str, Any]
