@@ -1659,3 +1659,36 @@ def test_terms_that_scale_one_shafts_whole_load_by_one_factor_are_one_cause(tmp_
     assert one_factor(net, terms, values) == []
     terms, values = chosen(0.427, 0.43 * 2e-4, 0.428 * 0.03)
     assert one_factor(net, terms[1:], values) == []
+
+
+_FLANGE_LOAD = """
+title: a carriage and its declared load
+parameters: {M: 2 kg, D: 5 N*s/m, F: 3 N}
+components:
+  - {name: Pull, type: bforce, flange: cart, expr: "10*tanh(t/0.01)"}
+  - {name: Mc, type: mass, flange: cart, m: M}
+  - {name: Dc, type: tdamper, flange: cart, d: D}
+  - {name: Fc, type: tfriction, flange: cart, f_c: F, v_brk: 1e-3}
+probes: {v: cart.v}
+"""
+
+
+def test_a_flanges_whole_load_scaled_by_one_factor_is_one_cause_too(tmp_path):
+    """factor.one_factor on a translational body: a mass correction, a viscous and a
+    Coulomb friction on one flange at +30 % of the declared mass, drag and friction are
+    flagged together, each named by the declared term it scales."""
+    from types import SimpleNamespace
+
+    from circuitsim.loop.diagnose.factor import one_factor
+
+    path = tmp_path / "cart.yaml"
+    path.write_text(_FLANGE_LOAD)
+    kinds = (("inertia", "Mc", "inertia_Mc_dJ", 0.3),
+             ("viscous-friction", "cart", "viscous_friction_cart_b", 0.3 * 5.0),
+             ("coulomb-friction", "cart", "coulomb_friction_cart_c", 0.301 * 3.0))
+    chosen = [SimpleNamespace(candidate=SimpleNamespace(effect=e, target=t, free={n: 0}))
+              for e, t, n, _ in kinds]
+    found = one_factor(cs.load(path), chosen, {n: v for _, _, n, v in kinds})
+    assert [(v.node, v.term) for _, v in found] == [
+        ("cart", "mass Mc"), ("cart", "viscous drag"), ("cart", "Coulomb friction")]
+    assert all(abs(v.common - 0.3003) < 1e-3 for _, v in found)

@@ -27,8 +27,12 @@ FACTOR_TERMS = 3
 #: by chance)
 FACTOR_AGREE = 0.05
 #: declared component types whose value a found term scales, by the found effect: (type,
-#: parameter) of the declared rotational terms
-DECLARED = {"viscous-friction": ("damper", "b"), "coulomb-friction": ("friction", "tau_c")}
+#: parameter, port) of the declared rotational and translational terms
+DECLARED = {"viscous-friction": (("damper", "b", "shaft"), ("tdamper", "d", "flange")),
+            "coulomb-friction": (("friction", "tau_c", "shaft"), ("tfriction", "f_c", "flange"))}
+#: the port a body sits on, by its type (``effects.INERTIAS``)
+BODY_PORT = {"inertia": "shaft", "mass": "flange"}
+WORDS = {"viscous-friction": "viscous drag", "coulomb-friction": "Coulomb friction"}
 
 
 @dataclass(frozen=True)
@@ -47,8 +51,8 @@ class OneFactor:
 
 def one_factor(net: Any, chosen: list[Any], params: Mapping[str, float]
                ) -> list[tuple[Any, OneFactor]]:
-    """The ``chosen`` effects and corrections that scale one shaft's declared inertia, drag
-    and Coulomb friction by one factor (see the module docstring), each with its verdict;
+    """The ``chosen`` effects and corrections that scale one shaft's (or flange's) declared
+    inertia (or mass), drag and Coulomb friction by one factor (see the module docstring), each with its verdict;
     empty when no shaft has ``FACTOR_TERMS`` of them agreeing within ``FACTOR_AGREE``.
     ``net``: the declared netlist (built), ``params``: the fitted values [SI]."""
     env = net.global_values(overrides=dict(params))
@@ -70,9 +74,9 @@ def one_factor(net: Any, chosen: list[Any], params: Mapping[str, float]
 
 def _relative(net: Any, env: Mapping[str, float], candidate: Any,
               params: Mapping[str, float]) -> tuple[str, str, float] | None:
-    """(shaft node, the declared term in words, the found term's size over it) of an
-    inertia correction or of a viscous or Coulomb friction on a shaft that declares one;
-    None for any other effect."""
+    """(node, the declared term in words, the found term's size over it) of a body's
+    correction (an inertia or a mass) or of a viscous or Coulomb friction on a shaft or a
+    flange that declares one; None for any other effect."""
     from circuitsim.loop.effects import INERTIAS
     from circuitsim.netlist.expr import evaluate
 
@@ -81,16 +85,15 @@ def _relative(net: Any, env: Mapping[str, float], candidate: Any,
         return None
     if candidate.effect == "inertia":
         comp = net.component(candidate.target)
-        node = dict(comp.ports).get("shaft")
-        return (node, f"inertia {comp.name}", float(params[name])) \
-            if node and comp.type == "inertia" and comp.type in INERTIAS else None
+        node = dict(comp.ports).get(BODY_PORT.get(comp.type, ""))
+        return (node, f"{comp.type} {comp.name}", float(params[name])) \
+            if node and comp.type in INERTIAS else None
     if candidate.effect not in DECLARED:
         return None
-    kind, key = DECLARED[candidate.effect]
-    declared = sum(evaluate(c.values[f"{c.name}.{key}"].node, env) for c in net.components
-                   if c.type == kind and dict(c.ports).get("shaft") == candidate.target
+    declared = sum(evaluate(c.values[f"{c.name}.{key}"].node, env)
+                   for kind, key, port in DECLARED[candidate.effect] for c in net.components
+                   if c.type == kind and dict(c.ports).get(port) == candidate.target
                    and f"{c.name}.{key}" in c.values)
     if not declared > 0.0:
         return None
-    words = "viscous drag" if kind == "damper" else "Coulomb friction"
-    return candidate.target, words, float(params[name]) / declared
+    return candidate.target, WORDS[candidate.effect], float(params[name]) / declared
