@@ -1044,12 +1044,12 @@ def _one_factor(setup: Setup, state0: ModelState, state: ModelState, log: dict[s
         setup.log("the model without the common factor's terms could not be refitted; "
                   "they stay")
         return state
-    node, common = found[0][1].node, found[0][1].common
+    shares = "; ".join(sorted({f"{v.node}'s by {v.common:+.1%}" for _, v in found}))
     return _rejected_as_stand_ins(
         setup, state0, reduced, state, log, found,
-        f"together they scale {node}'s whole declared load by one factor, {common:+.1%}: "
-        f"one cause, a loss proportional to the torque carried to {node} (an efficiency), "
-        f"which the catalog does not hold")
+        f"together they scale a whole declared load by one factor ({shares}): one cause, a "
+        f"loss proportional to the torque carried there (an efficiency), which the catalog "
+        f"does not hold")
 
 
 def _where(setup: Setup, state0: ModelState, state: ModelState, log: dict[str, Any]

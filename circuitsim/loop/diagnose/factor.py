@@ -30,7 +30,7 @@ FACTOR_AGREE = 0.05
 #: parameter, port) of the declared rotational and translational terms
 DECLARED = {"viscous-friction": (("damper", "b", "shaft"), ("tdamper", "d", "flange")),
             "coulomb-friction": (("friction", "tau_c", "shaft"), ("tfriction", "f_c", "flange"))}
-#: the port a body sits on, by its type (``effects.INERTIAS``)
+#: the port a body sits on, by its type (the types of ``effects.INERTIAS``)
 BODY_PORT = {"inertia": "shaft", "mass": "flange"}
 WORDS = {"viscous-friction": "viscous drag", "coulomb-friction": "Coulomb friction"}
 
@@ -52,8 +52,9 @@ class OneFactor:
 def one_factor(net: Any, chosen: list[Any], params: Mapping[str, float]
                ) -> list[tuple[Any, OneFactor]]:
     """The ``chosen`` effects and corrections that scale one shaft's (or flange's) declared
-    inertia (or mass), drag and Coulomb friction by one factor (see the module docstring), each with its verdict;
-    empty when no shaft has ``FACTOR_TERMS`` of them agreeing within ``FACTOR_AGREE``.
+    inertia (or mass), drag and Coulomb friction by one factor (see the module docstring),
+    each with its verdict; empty when no node has ``FACTOR_TERMS`` of them agreeing within
+    ``FACTOR_AGREE``.
     ``net``: the declared netlist (built), ``params``: the fitted values [SI]."""
     env = net.global_values(overrides=dict(params))
     by_node: dict[str, list[tuple[Any, str, float]]] = {}
@@ -77,17 +78,15 @@ def _relative(net: Any, env: Mapping[str, float], candidate: Any,
     """(node, the declared term in words, the found term's size over it) of a body's
     correction (an inertia or a mass) or of a viscous or Coulomb friction on a shaft or a
     flange that declares one; None for any other effect."""
-    from circuitsim.loop.effects import INERTIAS
     from circuitsim.netlist.expr import evaluate
 
-    (name,) = candidate.free if len(candidate.free) == 1 else (None,)
-    if name is None or name not in params:
+    if len(candidate.free) != 1 or next(iter(candidate.free)) not in params:
         return None
+    name = next(iter(candidate.free))
     if candidate.effect == "inertia":
         comp = net.component(candidate.target)
         node = dict(comp.ports).get(BODY_PORT.get(comp.type, ""))
-        return (node, f"{comp.type} {comp.name}", float(params[name])) \
-            if node and comp.type in INERTIAS else None
+        return (node, f"{comp.type} {comp.name}", float(params[name])) if node else None
     if candidate.effect not in DECLARED:
         return None
     declared = sum(evaluate(c.values[f"{c.name}.{key}"].node, env)
