@@ -413,6 +413,20 @@ class OneProbe(recordkit.Plumbing):
         return entry
 
 
+#: across the shaft (a spring and a damper, 1:1): the body an effect on each is compared with,
+#: and the factor its size takes there per kind (the hub and the impeller turn at one mean
+#: speed). Added after fresh29 was run once, as motors M, P and Q have it: ag04's dry friction
+#: on the impeller was named on the hub, 0.80 sigma from it
+ACROSS = {"impeller": ("hub", {"coul": 1.0, "offset": 1.0, "visc": 1.0, "cog": 1.0}),
+          "hub": ("impeller", {"coul": 1.0, "offset": 1.0, "visc": 1.0, "cog": 1.0})}
+
+
+def _location_entry(s: dict[str, Any]) -> dict[str, Any]:
+    """A catalog or two-effect record's ``location_sigma`` across the shaft
+    (``recordkit.location_entry``), after a marginal record's scaling."""
+    return recordkit.location_entry(s, ACROSS, times(s), imprints(s), sim)
+
+
 #: the plumbing of this set: truth entries, marginal scaling, the catalog's imprints an
 #: outside or marginal record is compared with, the CSV, each on the record's own probes;
 #: each probe's sensor effects are its gain, its offset and its delay; the netlist declares
@@ -420,7 +434,8 @@ class OneProbe(recordkit.Plumbing):
 KIT = OneProbe(
     split=SPLIT, motor=MOTOR, netlist=NETLIST, white=WHITE, simulator=sa, sim=sim,
     times=times, scalar_effects=SCALAR_EFFECTS, harmonic_effects=HARMONIC_EFFECTS,
-    harmonic_size=harmonic_size, marginal_sigma=MARGINAL_SIGMA, declared=())
+    harmonic_size=harmonic_size, marginal_sigma=MARGINAL_SIGMA, declared=(),
+    extra=_location_entry)
 imprints = KIT.imprints
 make = KIT.make
 scale_marginal = KIT.scale_marginal
