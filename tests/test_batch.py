@@ -86,6 +86,8 @@ def test_steps_too_many_for_one_band_run_in_batches_led_by_the_point(monkeypatch
     n = len(model.state_names)
     sets = [{"Ra": 1.1}] + [{"Ra": 1.1 * (1 + 1e-4 * j)} for j in range(1, 11)]
     monkeypatch.setenv("CIRCUITSIM_KERNELS", "numba")
+    # one process: the batches are counted here (test_fork checks the shared ones)
+    monkeypatch.setenv("CIRCUITSIM_FORK", "off")
     whole = simulate_batch(model, sets, stop=0.02, rtol=1e-8, atol=1e-10, nearby=True)
     calls: list[int] = []
     one_batch = batch_mod.simulate_batch

@@ -21,6 +21,7 @@ from circuitsim.loop import effects
 from circuitsim.loop.diagnose import diagnose
 from circuitsim.loop.record import Record
 from circuitsim.netlist import build
+from circuitsim.solve import fork as fork_mod
 
 from conftest import NETLISTS
 
@@ -183,6 +184,25 @@ def test_two_hidden_effects_are_both_found():
     found = {a.effect for a in d.effects}
     assert "cogging" in found and found & {"coulomb-friction", "force-offset"}, d.summary()
     assert d.error_after < 1.2 * noise_floor(rec)
+
+
+@pytest.mark.skipif(fork_mod.copies() == 0, reason="one core, or no fork here: the diagnosis runs in one process only")
+def test_a_diagnosis_shared_with_forked_copies_is_the_one_made_alone(monkeypatch):
+    """The refits of a round, the swaps and the backward step run on the machine's cores
+    (``solve/fork.py``): every number of the report is the one process's, to the bit."""
+    rec = make_record([("coulomb-friction", "rotor", None, [5e-4]),
+                       ("cogging", "rotor", 6, [1e-3, 0.0])], seed=5)
+    lines: list[list[str]] = []
+    reports = []
+    for shared in ("on", "off"):
+        monkeypatch.setenv("CIRCUITSIM_FORK", shared)
+        lines.append([])
+        d = diagnose(cs.load(MOTOR), rec, progress=lines[-1].append)
+        reports.append({k: v for k, v in d.as_dict().items() if k != "timings"})
+    assert json.dumps(reports[0], sort_keys=True, default=str) == \
+        json.dumps(reports[1], sort_keys=True, default=str)
+    # the same steps, the refits' lines said in the same order
+    assert lines[0] == lines[1] and any("swap" in x or "refitting" in x for x in lines[0])
 
 
 def test_effect_outside_the_catalog_is_not_misattributed(tmp_path):
@@ -954,7 +974,7 @@ def test_after_an_acceptance_the_worker_is_asked_for_the_swaps_and_the_backward_
     revise = [keys for who, keys in asked if who == "_expect_revise"]
     assert len(revise) == 1, asked  # only the second acceptance has swaps and a step back
     swaps = [k for who, k in claimed if who == "_refit_choices"]
-    backward = [k for who, k in claimed if who == "_without"][:1]  # the step's, first
+    backward = [k for who, k in claimed if who == "_withouts"][:1]  # the step's, first
     bent = [k for who, k in claimed if who == "bend_of"]
     assert len(swaps) >= 2 and backward and bent, claimed
     assert revise[0] == [*swaps[1:], *backward, *reversed(bent)], (revise, claimed)
@@ -1101,6 +1121,25 @@ def test_a_law_that_bends_significantly_but_no_verdict_is_said_to():
     assert verdict.bent and "caveat" not in verdict.as_dict()
     assert not noise.bent and "caveat" not in noise.as_dict()
     assert _caveat(Accepted("sensor-delay", "current", {}, {}, 0.0, {})) == ""
+
+
+def test_a_cosine_of_an_angle_that_travels_under_a_turn_is_no_ripple_in_words():
+    """law.LawTest: a bend by the cosine and sine of a shaft's angle reads "a ripple once per
+    turn" where the shaft turns; where its angle travels under one turn over the record (a
+    tilt, a seat track's slow screw), the same shapes are a slow change with the angle, and
+    the words say how far it travels."""
+    from circuitsim.loop.diagnose.law import LawTest
+
+    words = ("cos(screw.phi)", "sin(screw.phi)")
+    turning = LawTest(-80.0, 95.0, words, 0.4, (0.3, 0.4), (1.2,))
+    crawling = LawTest(-80.0, 95.0, words, 0.4, (0.3, 0.4), (1.2,),
+                       part_turns=(("screw.phi", 0.37),))
+    assert "a ripple once per turn of screw.phi (50%)" in turning.why()
+    text = crawling.why()
+    assert "once per turn" not in text and "travels 0.37 of a turn" in text and "(50%)" in text
+    significant = LawTest(-80.0, 95.0, words, 0.01, (0.3, 0.4), (1.2,), spread=0.01,
+                          part_turns=(("screw.phi", 0.37),))
+    assert "travels 0.37 of a turn" in significant.caveat()
 
 
 def test_a_shape_the_record_does_not_determine_is_said_to():

@@ -18,6 +18,7 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 
+from circuitsim.solve.fork import fork_map, in_copy
 from circuitsim.solve.init import consistent_initial
 from circuitsim.solve.integrate import (
     Recorder,
@@ -93,11 +94,19 @@ def _in_chunks(model, run: Settings, sets: list[dict], size: int) -> list[SimRes
     screen: 35 s a round)."""
     rest = list(range(1, len(sets)))
     groups = [rest[i:i + size - 1] for i in range(0, len(rest), size - 1)]
-    out: list[SimResult] = []
-    for g in groups:
+
+    def batch(g: list[int]) -> list[SimResult]:
         runs = simulate_batch(model, [sets[0], *(sets[i] for i in g)], run.stop,
                               t_eval=run.t_eval, rtol=run.rtol, atol=run.atol,
                               max_step=run.max_step, init=run.init, nearby=True)
+        # the model does not pickle: a forked copy sends its runs without it
+        return [dataclasses.replace(r, model=None) for r in runs] if in_copy() else runs
+
+    out: list[SimResult] = []
+    # the batches are independent: they share this machine's cores (solve/fork.py)
+    for runs in fork_map(batch, groups):
+        runs = [r if r.model is not None else dataclasses.replace(r, model=model)
+                for r in runs]
         if not out:
             out.append(runs[0])
         out += [moved(out[0], runs[0], r) for r in runs[1:]]

@@ -81,6 +81,7 @@ from circuitsim.loop.diagnose.screen import (
     propose,
     screen_many,
 )
+from circuitsim.loop.diagnose.shared import refits
 from circuitsim.loop.diagnose.stability import stability
 from circuitsim.loop.diagnose.where import where_it_acts
 from circuitsim.loop.effects import candidates
@@ -499,16 +500,24 @@ def _refit_round(setup: Setup, state: ModelState, screens: list[Screen],
     that re-tune a declared term (corrections)."""
     trials: list[tuple[Trial, frozenset[str]]] = []
     _expect_refits(setup, state, screens)
-    for s in screens:
+    models = []
+    for s in screens:  # compiled here, in the order queued (a copy compiles nothing)
+        models.append(s.model or compile_raw(s.proposal.candidate.apply(state.raw)))
+
+    def work(local: Setup, i: int):
+        c = screens[i].proposal.candidate
+        local.log(f"refitting {c.key}")
+        trial = refit_trial(local, state, [c], screens[i].start, models[i])
+        return None if trial is None else trial.fit
+
+    # each candidate is refitted on its own: on this machine's cores at once
+    for s, fit in zip(screens, refits(setup, work, range(len(screens)), models), strict=True):
         c = s.proposal.candidate
-        setup.log(f"refitting {c.key}")
-        trial = refit_trial(setup, state, [c], s.start,
-                            s.model or compile_raw(c.apply(state.raw)))
-        if trial is None:
+        if fit is None:
             log["rejected"].append({"effect": c.effect, "target": c.target,
                                     "reason": "refit failed"})
             continue
-        judge(setup, state, trial)
+        trial = judge(setup, state, Trial((c,), fit))
         setup.log(f"  {c.key}: {trial.note}")
         trials.append((trial, _corrections([s])))
     passed = [t for t in trials if t[0].passed]
@@ -621,10 +630,10 @@ def _swap(setup: Setup, state: ModelState, log: dict[str, Any]) -> ModelState:
     best, best_gain = state, -BIC_MARGIN
     own = whiteners_of(state.fit.residuals, setup.probes)
     gains: dict[str, float] = {}
-    for combo in combos:
-        trial = _refit_choices(setup, state, list(combo), log)
+    for trial in _refit_choices(setup, state, [list(c) for c in combos], log):
         if trial is None:
             continue
+        combo = trial.chosen
         extra = len(trial.free) - len(state.free)  # parameters the swap adds (or removes)
         gain = _swap_gain(setup, state, trial, extra, own)
         gains[" + ".join(c.candidate.key for c in combo)] = gain
@@ -700,10 +709,41 @@ def _distinct_combos(options: list[list[Choice]]) -> list[tuple[Choice, ...]]:
     return combos
 
 
-def _refit_choices(setup: Setup, state: ModelState, chosen: list[Choice],
-                   log: dict[str, Any]) -> ModelState | None:
-    """The declared model with ``chosen`` patched in, refitted from the values known."""
-    chosen = _with_bases(chosen)
+def _refit_choices(setup: Setup, state: ModelState, options: list[list[Choice]],
+                   log: dict[str, Any]) -> list[ModelState | None]:
+    """For each of ``options``, the declared model with its choices patched in, refitted from
+    the values known (None where it cannot be compiled or refitted); the refits share this
+    machine's cores."""
+    plans = [_choices_plan(setup, state, _with_bases(chosen), log) for chosen in options]
+    models: list[Any] = []
+    for raw, *_ in plans:
+        try:
+            models.append(compile_raw(raw))
+        except CircuitsimError as exc:
+            setup.log(f"  swap refit failed: {exc}")
+            models.append(None)
+
+    def work(local: Setup, i: int):
+        _, free, params, bounds = plans[i]
+        if models[i] is None:
+            return None
+        try:
+            return refit(local, models[i], free, params, bounds, nfev=20)
+        except CircuitsimError as exc:
+            local.log(f"  swap refit failed: {exc}")
+            return None
+
+    fits = refits(setup, work, range(len(plans)), models)
+    return [None if fit is None else ModelState(raw, None, free, dict(fit.params), fit, bounds,
+                                                 chosen, state.base_raw)
+            for fit, (raw, free, _, bounds), chosen in zip(
+                fits, plans, (_with_bases(c) for c in options), strict=True)]
+
+
+def _choices_plan(setup: Setup, state: ModelState, chosen: list[Choice], log: dict[str, Any]
+                  ) -> tuple[Any, list[str], dict[str, float], dict[str, tuple[float, float]]]:
+    """The raw netlist, free parameters, start values and bounds of the declared model with
+    ``chosen`` patched in, started from the values known."""
     raw = _base_raw(state, chosen)
     free = [*setup.declared, *(n for c in chosen for n in c.candidate.free)]
     patched = {n for c in state.chosen for n in c.candidate.free}
@@ -716,12 +756,7 @@ def _refit_choices(setup: Setup, state: ModelState, chosen: list[Choice],
             params.update({n: t.fit.params[n] for n in c.candidate.free})
     bounds = {**state.bounds, **{n: (lo, hi) for c in chosen
                                  for n, (_, lo, hi) in c.candidate.free.items()}}
-    try:
-        fit = refit(setup, compile_raw(raw), free, params, bounds, nfev=20)
-    except CircuitsimError as exc:
-        setup.log(f"  swap refit failed: {exc}")
-        return None
-    return ModelState(raw, None, free, dict(fit.params), fit, bounds, chosen, state.base_raw)
+    return raw, free, params, bounds
 
 
 def _neighbour_orders(setup: Setup, state: ModelState, log: dict[str, Any]) -> ModelState:
@@ -843,8 +878,11 @@ def _take_order(setup: Setup, state: ModelState, i: int, new: ModelState,
 def _backward(setup: Setup, state: ModelState, log: dict[str, Any]) -> ModelState:
     """Stage 5: re-test each earlier choice with the others present; drop one whose removal
     costs less than the BIC margin (a stand-in for an effect accepted later)."""
-    for i, choice in enumerate(state.chosen[:-1]):
-        reduced = _without(setup, state, [c for j, c in enumerate(state.chosen) if j != i])
+    # every earlier choice's refit without it at once (they share this machine's cores); the
+    # first that is no longer needed goes
+    reductions = _withouts(setup, state, [[c for j, c in enumerate(state.chosen) if j != i]
+                                          for i in range(len(state.chosen) - 1)])
+    for choice, reduced in zip(state.chosen[:-1], reductions, strict=True):
         if reduced is None:
             continue
         # what goes with it (a refinement of it) is judged with it: its parameters count too
@@ -866,18 +904,32 @@ def _backward(setup: Setup, state: ModelState, log: dict[str, Any]) -> ModelStat
 def _without(setup: Setup, state: ModelState, keep: list[Choice]) -> ModelState | None:
     """The model with only the choices ``keep`` (less a refinement whose effect is gone),
     refitted from the values it has (None when the refit fails)."""
-    keep = _with_bases(keep)
-    raw = _base_raw(state, keep)
-    gone = {n for c in state.chosen if c not in keep for n in c.candidate.free}
-    free = [n for n in state.free if n not in gone]
-    params = {k: v for k, v in state.params.items() if k not in gone}
-    model = compile_raw(raw)
-    try:
-        fit = refit(setup, model, free, params, state.bounds, nfev=20)
-    except CircuitsimError:
-        return None
-    return ModelState(raw, model, free, dict(fit.params), fit, state.bounds, keep,
-                      state.base_raw)
+    return _withouts(setup, state, [keep])[0]
+
+
+def _withouts(setup: Setup, state: ModelState, keeps: list[list[Choice]]
+              ) -> list[ModelState | None]:
+    """``_without`` for each of ``keeps``, the refits sharing this machine's cores."""
+    plans = []
+    for keep in keeps:
+        keep = _with_bases(keep)
+        gone = {n for c in state.chosen if c not in keep for n in c.candidate.free}
+        raw = _base_raw(state, keep)
+        plans.append((keep, raw, compile_raw(raw), [n for n in state.free if n not in gone],
+                      {k: v for k, v in state.params.items() if k not in gone}))
+
+    def work(local: Setup, i: int):
+        _, _, model, free, params = plans[i]
+        try:
+            return refit(local, model, free, params, state.bounds, nfev=20)
+        except CircuitsimError:
+            return None
+
+    fits = refits(setup, work, range(len(plans)), [p[2] for p in plans])
+    return [None if fit is None else
+            ModelState(raw, model, free, dict(fit.params), fit, state.bounds, keep,
+                       state.base_raw)
+            for fit, (keep, raw, model, free, _) in zip(fits, plans, strict=True)]
 
 
 def _trades(setup: Setup, state0: ModelState, state: ModelState, log: dict[str, Any]

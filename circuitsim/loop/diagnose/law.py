@@ -129,6 +129,9 @@ class LawTest:
     #: (``_departure``); 0 for a gain's or an offset's [-]
     spread: float = 0.0
     ranged: bool = True  # judged by its spread too (``LAW_RANGE``; not a shaft's harmonic)
+    #: the angles of its cosine and sine shapes that travel under one turn over the record,
+    #: with the turns they travel: no ripple once per turn, a slow change with the angle
+    part_turns: tuple[tuple[str, float], ...] = ()
 
     @property
     def bent(self) -> bool:
@@ -170,7 +173,7 @@ class LawTest:
                 turns[t[4:-1]] = float(np.hypot(turns.get(t[4:-1], 0.0), b))
             else:
                 parts.append((abs(b), f"{t} ({b:+.0%} where it is largest)"))
-        parts += [(a, f"a ripple once per turn of {u} ({a:.0%})") for u, a in turns.items()]
+        parts += [(a, f"{self._turn_word(u)} ({a:.0%})") for u, a in turns.items()]
         big = [p for p in parts if p[0] >= 0.05] or parts
         return " and ".join(text for _, text in big)
 
@@ -187,10 +190,19 @@ class LawTest:
         two shapes are nearly one and their separate sizes mean nothing."""
         turns = sorted({t[4:-1] for t in self.terms if t.startswith(("cos(", "sin("))})
         words = [t for t in self.terms if not t.startswith(("cos(", "sin("))]
-        words += [f"a ripple once per turn of {u}" for u in turns]
+        words += [self._turn_word(u) for u in turns]
         return (f"its law holds only approximately over the record: bent with "
                 f"{' and '.join(words)} it gains ΔBIC {self.delta_bic:.0f}, "
                 f"{self.removed:.1%} of what the model leaves")
+
+    def _turn_word(self, angle: str) -> str:
+        """A cosine and a sine of ``angle`` in words: a ripple once per turn, or a slow
+        change with the angle where it travels under one turn."""
+        part = dict(self.part_turns).get(angle)
+        if part is None:
+            return f"a ripple once per turn of {angle}"
+        return (f"a change with the angle {angle} (which travels {part:.2f} of a turn in "
+                f"the record, so no ripple)")
 
     def as_dict(self) -> dict[str, object]:
         return {"delta_bic": self.delta_bic, "gain": self.gain, "terms": list(self.terms),
@@ -212,6 +224,7 @@ class Bend:
     ranged: bool = True  # its spread is judged (not a shaft's harmonic: ``LAW_RANGE``)
     #: a delay's: each bend's own scale, tau^k for the k-th derivative [s^k]
     scales: tuple[float, ...] = ()
+    part_turns: tuple[tuple[str, float], ...] = ()  # as LawTest's
 
 
 def _scale_of(kind: str, u: np.ndarray) -> tuple[float, float]:
@@ -317,12 +330,15 @@ def bend_of(setup: Setup, state: ModelState, candidate: Any,
         return None
     if law.place[0] == "probe":
         return _probe_bend(setup, state, law, [float(state.params[n]) for n in candidate.free])
-    names, scales, shapes = _names(law), {}, []
+    names, scales, shapes, part = _names(law), {}, [], {}
     for (_, c, s), (u, kind) in zip(names, law.terms, strict=True):
         values = _values(state.fit.sim, u, setup.record.t)
         if values is None:
             setup.log(f"  law of {candidate.key} not tested: the run does not hold {u}")
             return None
+        travel = float(np.ptp(values)) / (2.0 * np.pi)
+        if kind in ("cos", "sin") and travel < 1.0:
+            part[u] = travel
         scales[c], scales[s] = _scale_of(kind, values)
         shapes.append(_shape_values(kind, np.asarray(values, float), scales[c], scales[s]))
     try:
@@ -345,7 +361,7 @@ def bend_of(setup: Setup, state: ModelState, candidate: Any,
     words = tuple(_word(kind, u) for u, kind in law.terms) + tuple(
         COMPANION_WORD + law.companion[0][1] for _ in companion)
     return Bend(cols[:len(own_steps)], cols[len(own_steps):], words, True, tuple(shapes),
-                "order" not in candidate.fixed)
+                "order" not in candidate.fixed, part_turns=tuple(part.items()))
 
 
 def _probe_bend(setup: Setup, state: ModelState, law: Any, values: Sequence[float]
@@ -394,7 +410,7 @@ def law_test(setup: Setup, state: ModelState, own: Columns, bend: Bend) -> LawTe
     spread = (_departure(setup, state, own, bend, bends) if bend.scales and dbic < -BIC_MARGIN
               else spread_of(bends[:len(bend.shapes)], bend.shapes))
     return LawTest(dbic, gain, bend.words, removed, bends, level, bend.relative, spread,
-                   bend.ranged)
+                   bend.ranged, bend.part_turns)
 
 
 def _departure(setup: Setup, state: ModelState, own: Columns, bend: Bend,
