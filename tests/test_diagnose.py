@@ -1123,11 +1123,11 @@ def test_a_law_that_bends_significantly_but_no_verdict_is_said_to():
     assert _caveat(Accepted("sensor-delay", "current", {}, {}, 0.0, {})) == ""
 
 
-def test_a_cosine_of_an_angle_that_travels_under_a_turn_is_no_ripple_in_words():
+def test_a_cosine_of_an_angle_that_spans_under_a_turn_is_no_ripple_in_words():
     """law.LawTest: a bend by the cosine and sine of a shaft's angle reads "a ripple once per
-    turn" where the shaft turns; where its angle travels under one turn over the record (a
-    tilt, a seat track's slow screw), the same shapes are a slow change with the angle, and
-    the words say how far it travels."""
+    turn" where the shaft turns; where its angle spans under one turn over the record (a
+    throttle plate, a tilt), the same shapes are a slow change with the angle, and the words
+    say how much of a turn it spans."""
     from circuitsim.loop.diagnose.law import LawTest
 
     words = ("cos(screw.phi)", "sin(screw.phi)")
@@ -1136,10 +1136,10 @@ def test_a_cosine_of_an_angle_that_travels_under_a_turn_is_no_ripple_in_words():
                        part_turns=(("screw.phi", 0.37),))
     assert "a ripple once per turn of screw.phi (50%)" in turning.why()
     text = crawling.why()
-    assert "once per turn" not in text and "travels 0.37 of a turn" in text and "(50%)" in text
+    assert "once per turn" not in text and "spans 0.37 of a turn" in text and "(50%)" in text
     significant = LawTest(-80.0, 95.0, words, 0.01, (0.3, 0.4), (1.2,), spread=0.01,
                           part_turns=(("screw.phi", 0.37),))
-    assert "travels 0.37 of a turn" in significant.caveat()
+    assert "spans 0.37 of a turn" in significant.caveat()
 
 
 def test_a_shape_the_record_does_not_determine_is_said_to():

@@ -129,8 +129,8 @@ class LawTest:
     #: (``_departure``); 0 for a gain's or an offset's [-]
     spread: float = 0.0
     ranged: bool = True  # judged by its spread too (``LAW_RANGE``; not a shaft's harmonic)
-    #: the angles of its cosine and sine shapes that travel under one turn over the record,
-    #: with the turns they travel: no ripple once per turn, a slow change with the angle
+    #: the angles of its cosine and sine shapes that span under one turn over the record,
+    #: with the turns they span: no ripple once per turn, a slow change with the angle
     part_turns: tuple[tuple[str, float], ...] = ()
 
     @property
@@ -197,12 +197,12 @@ class LawTest:
 
     def _turn_word(self, angle: str) -> str:
         """A cosine and a sine of ``angle`` in words: a ripple once per turn, or a slow
-        change with the angle where it travels under one turn."""
+        change with the angle where it spans under one turn."""
         part = dict(self.part_turns).get(angle)
         if part is None:
             return f"a ripple once per turn of {angle}"
-        return (f"a change with the angle {angle} (which travels {part:.2f} of a turn in "
-                f"the record, so no ripple)")
+        return (f"a change with the angle {angle} (which spans {part:.2f} of a turn over "
+                f"the record: no ripple)")
 
     def as_dict(self) -> dict[str, object]:
         return {"delta_bic": self.delta_bic, "gain": self.gain, "terms": list(self.terms),
