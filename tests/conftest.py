@@ -47,3 +47,16 @@ def compile_text(write_netlist):
             return cs.compile(cs.load(write_netlist(text), allow_outside=True))
 
     return build
+
+
+def kim_steps(monkeypatch) -> tuple:
+    """The Kim base model on the compiled kernels, its unknowns, and ten steps of Ra from
+    one point (the point first): finite differences for the batch tests."""
+    import circuitsim as cs
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        model = cs.compile(cs.load(NETLISTS / "kim2024" / "base.yaml"))
+    monkeypatch.setenv("CIRCUITSIM_KERNELS", "numba")
+    sets = [{"Ra": 1.1}] + [{"Ra": 1.1 * (1 + 1e-4 * j)} for j in range(1, 11)]
+    return model, len(model.state_names), sets

@@ -10,7 +10,7 @@ import pytest
 import circuitsim as cs
 from circuitsim.solve.batch import simulate_batch
 
-from conftest import NETLISTS
+from conftest import NETLISTS, kim_steps
 
 RC = """
     components:
@@ -80,12 +80,7 @@ def test_steps_too_many_for_one_band_run_in_batches_led_by_the_point(monkeypatch
     the differences are smooth, not solver noise."""
     from circuitsim.solve import batch as batch_mod
 
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        model = cs.compile(cs.load(NETLISTS / "kim2024" / "base.yaml"))
-    n = len(model.state_names)
-    sets = [{"Ra": 1.1}] + [{"Ra": 1.1 * (1 + 1e-4 * j)} for j in range(1, 11)]
-    monkeypatch.setenv("CIRCUITSIM_KERNELS", "numba")
+    model, n, sets = kim_steps(monkeypatch)
     # one process: the batches are counted here (test_fork checks the shared ones)
     monkeypatch.setenv("CIRCUITSIM_FORK", "off")
     whole = simulate_batch(model, sets, stop=0.02, rtol=1e-8, atol=1e-10, nearby=True)

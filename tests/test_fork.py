@@ -4,16 +4,14 @@ from __future__ import annotations
 
 import os
 import time
-import warnings
 
 import numpy as np
 import pytest
 
-import circuitsim as cs
 from circuitsim.solve import fork
 from circuitsim.solve.fork import fork_map, in_copy
 
-from conftest import NETLISTS
+from conftest import kim_steps
 
 needs_copies = pytest.mark.skipif(fork.copies() == 0, reason="one core, or no fork here: "
                                   "fork_map runs serially (tested by test_off_is_serial)")
@@ -80,12 +78,7 @@ def test_batches_shared_with_copies_are_the_serial_numbers_to_the_bit(monkeypatc
     from circuitsim.solve import batch as batch_mod
     from circuitsim.solve.batch import simulate_batch
 
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        model = cs.compile(cs.load(NETLISTS / "kim2024" / "base.yaml"))
-    n = len(model.state_names)
-    sets = [{"Ra": 1.1}] + [{"Ra": 1.1 * (1 + 1e-4 * j)} for j in range(1, 11)]
-    monkeypatch.setenv("CIRCUITSIM_KERNELS", "numba")
+    model, n, sets = kim_steps(monkeypatch)
     monkeypatch.setattr(batch_mod, "BAND_MAX", 3 * n)
     shared = simulate_batch(model, sets, stop=0.02, rtol=1e-8, atol=1e-10, nearby=True)
     monkeypatch.setenv("CIRCUITSIM_FORK", "off")
