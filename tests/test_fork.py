@@ -88,3 +88,12 @@ def test_batches_shared_with_copies_are_the_serial_numbers_to_the_bit(monkeypatc
         assert a.success and b.success and a.model is model
         assert np.array_equal(a.t, b.t) and np.array_equal(a.y, b.y)
         assert np.array_equal(a["speed"], b["speed"])
+
+
+def test_no_process_to_spare_runs_here(monkeypatch):
+    """A fork refused (no process or memory to spare) leaves every piece to this process."""
+    def refused():
+        raise OSError("Resource temporarily unavailable")
+
+    monkeypatch.setattr(os, "fork", refused)
+    assert fork_map(_square_and_where, range(4)) == [(x * x, os.getpid()) for x in range(4)]

@@ -31,6 +31,9 @@ _R = TypeVar("_R")
 #: set in a forked copy: it computes its share alone
 _IN_COPY = [False]
 _INDEX = struct.Struct("<i")
+#: the most pieces one call shares: their indices must fit in a pipe's buffer (64 KiB on
+#: Linux, never less than a page) before any copy reads them
+MAX_PIECES = 1000
 
 
 def copies() -> int:
@@ -52,12 +55,17 @@ def fork_map(fn: Callable[[_T], _R], items: Sequence[_T]) -> list[_R]:
     must pickle; its side effects in a copy are lost (return what the caller needs)."""
     items = list(items)
     n_copies = min(copies(), len(items) - 1)
-    if n_copies <= 0:
+    if n_copies <= 0 or len(items) > MAX_PIECES:
         return [fn(x) for x in items]
     queue_r, queue_w = os.pipe()
     os.write(queue_w, b"".join(_INDEX.pack(i) for i in range(len(items))))
     os.close(queue_w)  # an empty queue then reads as its end, in every copy
-    children = [_spawn(fn, items, queue_r) for _ in range(n_copies)]
+    children = []
+    for _ in range(n_copies):
+        try:
+            children.append(_spawn(fn, items, queue_r))
+        except OSError:  # no process or pipe to spare: fewer copies, or none
+            break
     done: dict[int, Any] = {}
     try:
         for i in _taken(queue_r):
@@ -88,11 +96,16 @@ def _taken(queue_r: int):
 def _spawn(fn: Callable, items: list, queue_r: int) -> tuple[int, int]:
     """A forked copy taking pieces off the queue; its pid and the pipe its results come by."""
     out_r, out_w = os.pipe()
-    with warnings.catch_warnings():
-        # Python 3.12+ warns of forking beside threads; the copy runs only its own code and
-        # touches none of their locks (the one beside a diagnosis: compiling ahead's reader)
-        warnings.simplefilter("ignore", DeprecationWarning)
-        pid = os.fork()
+    try:
+        with warnings.catch_warnings():
+            # Python 3.12+ warns of forking beside threads; the copy runs only its own code
+            # and touches none of their locks (beside a diagnosis: compiling ahead's reader)
+            warnings.simplefilter("ignore", DeprecationWarning)
+            pid = os.fork()
+    except OSError:
+        os.close(out_r)
+        os.close(out_w)
+        raise
     if pid:
         os.close(out_w)
         return pid, out_r
