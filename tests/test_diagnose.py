@@ -923,7 +923,7 @@ def test_orders_of_a_changing_speed_stand_out_of_what_follows_the_speed():
 def queue(monkeypatch):
     """A recorder in place of the compile-ahead worker (``solve/ahead.py``): (what was
     queued, by the function that queued it; what was compiled, by the function that
-    compiled it), each as topology keys."""
+    compiled it -- for ``engine._refitted``, by what it refits), each as topology keys."""
     import sys
 
     from circuitsim.solve import ahead
@@ -935,7 +935,10 @@ def queue(monkeypatch):
         asked.append((sys._getframe(1).f_code.co_name, [ahead._key(r) for r in raws]))
 
     def claim(raw):
-        claimed.append((sys._getframe(2).f_code.co_name, ahead._key(raw)))
+        frame = sys._getframe(2)
+        who = frame.f_code.co_name
+        # the refits of a swap or a reduced model are compiled by one helper, which says whose
+        claimed.append((frame.f_locals["what"] if who == "_refitted" else who, ahead._key(raw)))
 
     monkeypatch.setattr(ahead, "enabled", lambda: True)
     monkeypatch.setattr(ahead, "expect", expect)
@@ -973,8 +976,8 @@ def test_after_an_acceptance_the_worker_is_asked_for_the_swaps_and_the_backward_
     assert len(d.effects) == 2, d.summary()
     revise = [keys for who, keys in asked if who == "_expect_revise"]
     assert len(revise) == 1, asked  # only the second acceptance has swaps and a step back
-    swaps = [k for who, k in claimed if who == "_refit_choices"]
-    backward = [k for who, k in claimed if who == "_withouts"][:1]  # the step's, first
+    swaps = [k for who, k in claimed if who == "swap"]
+    backward = [k for who, k in claimed if who == "reduced model's"][:1]  # the step's, first
     bent = [k for who, k in claimed if who == "bend_of"]
     assert len(swaps) >= 2 and backward and bent, claimed
     assert revise[0] == [*swaps[1:], *backward, *reversed(bent)], (revise, claimed)

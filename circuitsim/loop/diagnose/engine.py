@@ -511,7 +511,7 @@ def _refit_round(setup: Setup, state: ModelState, screens: list[Screen],
         return None if trial is None else trial.fit
 
     # each candidate is refitted on its own: on this machine's cores at once
-    for s, fit in zip(screens, refits(setup, work, range(len(screens)), models), strict=True):
+    for s, fit in zip(screens, refits(setup, work, models), strict=True):
         c = s.proposal.candidate
         if fit is None:
             log["rejected"].append({"effect": c.effect, "target": c.target,
@@ -666,7 +666,6 @@ def _swap(setup: Setup, state: ModelState, log: dict[str, Any]) -> ModelState:
             log["trials"][c.candidate.key] = next(
                 a for alts in log["rounds"].values() for a in alts
                 if a.candidates[0].key == c.candidate.key)
-    best.model = compile_raw(best.raw)
     return best
 
 
@@ -712,32 +711,43 @@ def _distinct_combos(options: list[list[Choice]]) -> list[tuple[Choice, ...]]:
 def _refit_choices(setup: Setup, state: ModelState, options: list[list[Choice]],
                    log: dict[str, Any]) -> list[ModelState | None]:
     """For each of ``options``, the declared model with its choices patched in, refitted from
-    the values known (None where it cannot be compiled or refitted); the refits share this
-    machine's cores."""
-    plans = [_choices_plan(setup, state, _with_bases(chosen), log) for chosen in options]
+    the values known (None where it cannot be compiled or refitted)."""
+    plans = []
+    for chosen in options:
+        chosen = _with_bases(chosen)
+        plans.append((chosen, *_choices_plan(setup, state, chosen, log)))
+    return _refitted(setup, state, plans, "swap")
+
+
+def _refitted(setup: Setup, state: ModelState,
+              plans: list[tuple[list[Choice], Any, list[str], dict[str, float],
+                                dict[str, tuple[float, float]]]], what: str
+              ) -> list[ModelState | None]:
+    """Each plan (choices, raw netlist, free parameters, start values, bounds) compiled here
+    and refitted, the refits sharing this machine's cores (``shared.refits``); None where it
+    cannot be compiled or refitted, said as ``what``'s failure."""
     models: list[Any] = []
-    for raw, *_ in plans:
+    for _, raw, *_ in plans:
         try:
             models.append(compile_raw(raw))
         except CircuitsimError as exc:
-            setup.log(f"  swap refit failed: {exc}")
+            setup.log(f"  {what} refit failed: {exc}")
             models.append(None)
 
     def work(local: Setup, i: int):
-        _, free, params, bounds = plans[i]
+        _, _, free, params, bounds = plans[i]
         if models[i] is None:
             return None
         try:
             return refit(local, models[i], free, params, bounds, nfev=20)
         except CircuitsimError as exc:
-            local.log(f"  swap refit failed: {exc}")
+            local.log(f"  {what} refit failed: {exc}")
             return None
 
-    fits = refits(setup, work, range(len(plans)), models)
-    return [None if fit is None else ModelState(raw, None, free, dict(fit.params), fit, bounds,
-                                                 chosen, state.base_raw)
-            for fit, (raw, free, _, bounds), chosen in zip(
-                fits, plans, (_with_bases(c) for c in options), strict=True)]
+    return [None if fit is None else ModelState(raw, model, free, dict(fit.params), fit,
+                                                 bounds, chosen, state.base_raw)
+            for fit, model, (chosen, raw, free, _, bounds) in zip(
+                refits(setup, work, models), models, plans, strict=True)]
 
 
 def _choices_plan(setup: Setup, state: ModelState, chosen: list[Choice], log: dict[str, Any]
@@ -914,22 +924,9 @@ def _withouts(setup: Setup, state: ModelState, keeps: list[list[Choice]]
     for keep in keeps:
         keep = _with_bases(keep)
         gone = {n for c in state.chosen if c not in keep for n in c.candidate.free}
-        raw = _base_raw(state, keep)
-        plans.append((keep, raw, compile_raw(raw), [n for n in state.free if n not in gone],
-                      {k: v for k, v in state.params.items() if k not in gone}))
-
-    def work(local: Setup, i: int):
-        _, _, model, free, params = plans[i]
-        try:
-            return refit(local, model, free, params, state.bounds, nfev=20)
-        except CircuitsimError:
-            return None
-
-    fits = refits(setup, work, range(len(plans)), [p[2] for p in plans])
-    return [None if fit is None else
-            ModelState(raw, model, free, dict(fit.params), fit, state.bounds, keep,
-                       state.base_raw)
-            for fit, (keep, raw, model, free, _) in zip(fits, plans, strict=True)]
+        plans.append((keep, _base_raw(state, keep), [n for n in state.free if n not in gone],
+                      {k: v for k, v in state.params.items() if k not in gone}, state.bounds))
+    return _refitted(setup, state, plans, "reduced model's")
 
 
 def _trades(setup: Setup, state0: ModelState, state: ModelState, log: dict[str, Any]

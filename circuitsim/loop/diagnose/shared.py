@@ -11,26 +11,24 @@ from __future__ import annotations
 
 import dataclasses
 from collections.abc import Callable, Sequence
-from typing import Any, TypeVar
+from typing import Any
 
 from circuitsim.loop.diagnose.context import Setup
 from circuitsim.solve.fork import fork_map, in_copy
 
-_T = TypeVar("_T")
 
-
-def refits(setup: Setup, work: Callable[[Setup, _T], Any], items: Sequence[_T],
-           models: Sequence[Any]) -> list[Any]:
-    """``work(setup, item)`` for each of ``items``: a fit (``fit_record``'s result) or None.
-    ``models[i]``: the compiled model item i's fit runs on, compiled before (a copy compiles
-    nothing: what it compiled would be lost to this process)."""
+def refits(setup: Setup, work: Callable[[Setup, int], Any], models: Sequence[Any]
+           ) -> list[Any]:
+    """``work(setup, i)`` for each index i of ``models``: a fit (``fit_record``'s result) or
+    None. ``models[i]``: the compiled model refit i runs on, compiled before (a copy
+    compiles nothing: what it compiled would be lost to this process)."""
     def one(i: int) -> tuple[Any, list[str]]:
         lines: list[str] = []
-        fit = work(dataclasses.replace(setup, say=lines.append), items[i])
+        fit = work(dataclasses.replace(setup, say=lines.append), i)
         return (_bare(fit) if in_copy() else fit), lines
 
     out = []
-    for (fit, lines), model in zip(fork_map(one, range(len(items))), models, strict=True):
+    for (fit, lines), model in zip(fork_map(one, range(len(models))), models, strict=True):
         for line in lines:
             setup.log(line)
         out.append(_bound(fit, model))
