@@ -910,7 +910,8 @@ def fit_record(model, record: Record, free: Sequence[str], *,
                rtol: float = 1e-8, atol: float | None = None,
                max_nfev: int = 100, weights: Mapping[str, float] | None = None,
                tol: float = 1e-8, reduce: bool = True,
-               progress: Callable[[str], None] | None = None) -> FitResult:
+               progress: Callable[[str], None] | None = None,
+               refuse_slip: bool = True) -> FitResult:
     """Fit ``free`` parameters of a compiled model to a measured record (output error).
 
     The model is simulated from rest on the record's time grid and compared with each probe
@@ -938,6 +939,8 @@ def fit_record(model, record: Record, free: Sequence[str], *,
         when known; on a reduced record, the working record's); default: the probe's spread.
     reduce : first bring a long, oversampled record to the resolution its content needs
         (``loop.reduce.reduce_record``). progress : called with a line at each simulation.
+    refuse_slip : raise DataError when the record matches the fitted model only after a
+        unit's factor or a sign (``loop.slip``): a column in the wrong unit, a reversed sensor.
 
     Returns
     -------
@@ -961,6 +964,13 @@ def fit_record(model, record: Record, free: Sequence[str], *,
                                            tol)
     prob.stage = "uncertainty"
     result = prob.result(z, step, ok, msg, nfev, stages)
+    if refuse_slip:
+        from circuitsim.loop.slip import slip_of
+
+        slip = slip_of(record, result.residuals, list(result.residuals),
+                       model.meta.get("units", {}))
+        if slip is not None:
+            raise DataError(f"{record.path}: {slip}")
     return dataclasses.replace(result, reduction=reduction)
 
 

@@ -132,8 +132,9 @@ FIT_TOL = 1e-6
 
 def refit(setup: Setup, model, free: Sequence[str], params: Mapping[str, float],
           bounds: Mapping[str, tuple[float, float]], *, staged: bool = False,
-          nfev: int = 12):
-    """Least squares of ``free`` on the record, residuals weighted by the probes' noise."""
+          nfev: int = 12, slip: bool = False):
+    """Least squares of ``free`` on the record, residuals weighted by the probes' noise;
+    ``slip``: refuse a record the model matches only after a unit's factor or a sign."""
     from circuitsim.loop.fit import fit_record
 
     with warnings.catch_warnings():
@@ -142,7 +143,7 @@ def refit(setup: Setup, model, free: Sequence[str], params: Mapping[str, float],
         return fit_record(model, setup.record, list(free), params=dict(params),
                           bounds=b or None, probes=list(setup.probes), rtol=setup.rtol,
                           staged=staged, max_nfev=nfev,
-                          weights=dict(setup.weights), tol=FIT_TOL)
+                          weights=dict(setup.weights), tol=FIT_TOL, refuse_slip=slip)
 
 
 def weighted_sse(setup: Setup, fit) -> float:

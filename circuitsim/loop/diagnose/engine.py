@@ -166,7 +166,8 @@ def fit_declared(netlist, record, free, probes, params, rtol, max_effects, progr
     names = _probes_of(record, model, probes)
     first = Setup(record, names, {p: spread(record[p]) for p in names}, tuple(free), rtol,
                   max_effects, progress)
-    fit0 = refit(first, model, list(free), dict(params or {}), {}, staged=True, nfev=100)
+    fit0 = refit(first, model, list(free), dict(params or {}), {}, staged=True, nfev=100,
+                 slip=True)
     weights = {p: _noise_weight(fit0.residuals[p], record[p]) for p in names}
     setup = Setup(record, names, weights, tuple(free), rtol, max_effects, progress)
     if free:  # refit with the noise weights (a probe counts by its signal-to-noise ratio)

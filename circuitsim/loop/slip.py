@@ -1,0 +1,86 @@
+"""A record the model matches only after a unit's factor or a sign: a slip of the data.
+
+A column read in the wrong unit (rpm read as rad/s, mA as A) or a sensor wired the other way
+round differs from the model by a fixed factor: 60/(2 pi), 1000, -1. No effect of a motor
+does that, and a fit or a diagnosis of such a record would report nonsense -- a sensor gain
+at the edge of its range, or "something remains that I cannot name". It is found after the
+declared model's fit: the factor g that maps the model's run onto the record (least
+squares) lies within ``NEAR`` of a unit factor or of -1, and that factor leaves at most
+``GAIN`` of the misfit the model leaves as it stands.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+
+#: relative distance of the record-to-model factor from a unit's factor that counts as it [-]
+NEAR = 0.03
+#: share of the model's misfit [-] that scaling by the factor must leave at most
+GAIN = 0.2
+
+#: (the record's reading over the true value [-], what reads a column so), for any quantity
+PREFIXES = ((1e3, "a column in milli-units (mA, mV) read without its prefix, or in base "
+                  "units read as kilo-units"),
+            (1e-3, "a column in base units read as milli-units, or in kilo-units (kW) read "
+                   "without its prefix"),
+            (1e6, "a column in micro-units read without its prefix"),
+            (1e-6, "a column in base units read as micro-units"))
+#: the same for a rotation speed [rad/s]
+SPEEDS = ((60 / (2 * math.pi), "a column in rpm read as rad/s"),
+          (2 * math.pi / 60, "a column in rad/s read as rpm"),
+          (1 / (2 * math.pi), "a column in rev/s read as rad/s"),
+          (2 * math.pi, "a column in rad/s read as rev/s"),
+          (180 / math.pi, "a column in deg/s read as rad/s"),
+          (math.pi / 180, "a column in rad/s read as deg/s"),
+          (60.0, "a column in rpm read as rev/s"),
+          (1 / 60, "a column in rev/s read as rpm"))
+#: the same for an angle [rad]
+ANGLES = ((1 / (2 * math.pi), "a column in turns read as rad"),
+          (2 * math.pi, "a column in rad read as turns"),
+          (180 / math.pi, "a column in degrees read as rad"),
+          (math.pi / 180, "a column in rad read as degrees"))
+SIGN = (-1.0, "a sensor or a probe of the opposite sign: the sensor wired the other way "
+              "round, or the probe's direction (a current into the node, not out of it)")
+
+
+def factors(unit: str) -> tuple[tuple[float, str], ...]:
+    """The factors a column of a probe in ``unit`` may be off by, with what makes each."""
+    compact = unit.replace(" ", "")
+    own = SPEEDS if compact in ("rad/s", "1/s") else ANGLES if compact == "rad" else ()
+    return (SIGN, *PREFIXES, *own)
+
+
+def slip_of(record, residuals: Mapping[str, np.ndarray], probes: Sequence[str],
+            units: Mapping[str, str]) -> str | None:
+    """What a record of ``probes`` reads off by, from the model's fit (``residuals``:
+    record - model on the record's grid), or None when the model is not off by a unit's
+    factor or a sign on any probe."""
+    found = []
+    for p in probes:
+        y = np.asarray(record[p], float)
+        r = np.asarray(residuals.get(p, ()), float)
+        if r.shape != y.shape:
+            continue
+        m = y - r
+        mm = float(m @ m)
+        if not (mm > 0.0 and math.isfinite(mm)):
+            continue
+        g = float(y @ m) / mm
+        left = float(r @ r)
+        for f, why in factors(units.get(p, "")):
+            if abs(g / f - 1.0) <= NEAR and float(np.sum((y - f * m) ** 2)) <= GAIN**2 * left:
+                rest = math.sqrt(float(np.sum((y - f * m) ** 2)) / left)
+                found.append(f"the record's {p} is {g:.4g} times the model's (the factor "
+                             f"{f:.4g}: {why}); scaled by it, the model's misfit falls to "
+                             f"{rest:.1%} of what it is")
+                break
+    if not found:
+        return None
+    return ("; ".join(found) + ". A motor's effects do not scale a reading by a unit's "
+            "factor or flip its sign: correct the column (its unit in the header, as "
+            "'speed [rpm]' or 'i [mA]', or its sign) or the probe's definition in the "
+            "netlist -- or, where the model is truly off by this factor (a gear ratio it "
+            "lacks), the netlist")

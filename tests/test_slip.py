@@ -1,0 +1,83 @@
+"""A record read in the wrong unit or with a reversed sensor (``loop.slip``): fit and diagnose
+refuse it with exit 2 and say which factor, instead of reporting a sensor gain at the edge of
+its range or "something remains that I cannot name"."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from circuitsim.cli.main import main
+from circuitsim.loop.fit import fit_record
+from circuitsim.loop.record import DataError, Record
+from circuitsim.loop.slip import slip_of
+
+MOTOR = """title: DC motor, 12 V step
+components:
+  - {name: V1, type: V, p: a, n: gnd, V: {step: {v1: 12 V, rise: 1 ns}}}
+  - {name: Rw, type: R, p: a, n: b, R: 1 ohm}
+  - {name: Lw, type: L, p: b, n: c, L: 1 mH}
+  - {name: M, type: emf, p: c, n: gnd, shaft: rotor, k_t: 0.05 N*m/A}
+  - {name: Jr, type: inertia, shaft: rotor, J: 1e-5 kg*m^2}
+  - {name: Bv, type: damper, shaft: rotor, b: 1e-5 N*m*s/rad}
+probes: {speed: rotor.w, i: Lw.i}
+analysis: {stop: 0.05, step: 50 us}
+"""
+
+
+@pytest.fixture(scope="module")
+def motor(tmp_path_factory):
+    """(the netlist's path, the compiled model, its run on the analysis grid)."""
+    import circuitsim as cs
+
+    path = tmp_path_factory.mktemp("slip") / "motor.yaml"
+    path.write_text(MOTOR)
+    model = cs.compile(cs.load(path))
+    return path, model, model.simulate()
+
+
+def _record(run, speed: float = 1.0, current: float = 1.0, seed: int = 3) -> Record:
+    """The model's run with white noise (0.5 % of each probe's spread), each probe scaled."""
+    rng = np.random.default_rng(seed)
+    cols = {}
+    for p, k in (("speed", speed), ("i", current)):
+        y = np.asarray(run[p], float)
+        cols[p] = k * y + 0.005 * np.std(y) * rng.standard_normal(y.size)
+    return Record(np.asarray(run.t, float), cols, "motor.csv")
+
+
+@pytest.mark.parametrize(("speed", "current", "words"), [
+    (60 / (2 * math.pi), 1.0, "rpm read as rad/s"),
+    (2 * math.pi / 60, 1.0, "rad/s read as rpm"),
+    (1.0, -1.0, "opposite sign"),
+    (1.0, 1e-3, "read as milli-units"),
+])
+def test_a_unit_or_sign_slip_is_refused_naming_its_factor(motor, speed, current, words):
+    _, model, run = motor
+    with pytest.raises(DataError) as got:
+        fit_record(model, _record(run, speed, current), [], reduce=False)
+    assert words in str(got.value) and "motor.csv" in str(got.value)
+
+
+@pytest.mark.parametrize(("speed", "current"), [(1.0, 1.0), (0.9, 1.0), (1.0, 1.25)])
+def test_a_record_the_model_meets_or_a_real_gain_is_no_slip(motor, speed, current):
+    """A sensor gain of 0.9 or 1.25 is a gain (the catalog's), no unit's factor."""
+    _, model, run = motor
+    fit = fit_record(model, _record(run, speed, current), [], reduce=False,
+                     refuse_slip=False)
+    rec = _record(run, speed, current)
+    assert slip_of(rec, fit.residuals, ["speed", "i"], model.meta["units"]) is None
+
+
+def test_cli_diagnose_and_fit_exit_2_on_a_column_in_rpm_read_as_rad_s(motor, tmp_path, capsys):
+    path, _, run = motor
+    rec = _record(run, 60 / (2 * math.pi), 1.0)
+    csv = tmp_path / "rec.csv"
+    np.savetxt(csv, np.column_stack([rec.t, rec["speed"], rec["i"]]), delimiter=",",
+               header="time [s],speed,i [A]", comments="")
+    for cmd in ("diagnose", "fit"):
+        assert main([cmd, str(path), str(csv), "--quiet"]) == 2
+        err = capsys.readouterr().err
+        assert "rpm read as rad/s" in err and "Traceback" not in err
