@@ -47,6 +47,7 @@ from typing import Any
 import numpy as np
 
 from circuitsim.errors import CircuitsimError, ParameterError, SolverError
+from circuitsim.loop import slip
 from circuitsim.loop.record import DataError, FeatureSet, Record
 from circuitsim.solve.route import serial_blas
 
@@ -952,6 +953,20 @@ def fit_record(model, record: Record, free: Sequence[str], *,
     prob = _RecordProblem(model, record, free, dict(params or {}), bounds, probes, weights,
                           rtol, atol, progress)
     z = np.zeros(len(free))
+    r0 = _started(prob, z, bounds)
+    step = prob.difference_steps(z, r0) if free else np.zeros(0)
+    z, ok, msg, nfev, stages = _run_stages(prob, z, step, staged if free else None, max_nfev,
+                                           tol)
+    prob.stage = "uncertainty"
+    result = prob.result(z, step, ok, msg, nfev, stages)
+    if refuse_slip:
+        slip.refuse(model, record, result.residuals)
+    return dataclasses.replace(result, reduction=reduction)
+
+
+def _started(prob: _RecordProblem, z: np.ndarray, bounds) -> np.ndarray:
+    """The residual at the start values ``z``; a parameter that starts at 0 has its scale
+    calibrated from there (``_calibrate``)."""
     r0 = prob.full(z)
     if prob.failures:
         raise SolverError("the simulation fails at the start values of the fit; run the "
@@ -959,19 +974,7 @@ def fit_record(model, record: Record, free: Sequence[str], *,
     if np.any(~prob.space.log & (prob.space.start == 0.0)):
         prob.space = _calibrate(prob.space, prob.full, z, r0, bounds)
         prob.failures = 0
-    step = prob.difference_steps(z, r0) if free else np.zeros(0)
-    z, ok, msg, nfev, stages = _run_stages(prob, z, step, staged if free else None, max_nfev,
-                                           tol)
-    prob.stage = "uncertainty"
-    result = prob.result(z, step, ok, msg, nfev, stages)
-    if refuse_slip:
-        from circuitsim.loop.slip import slip_of
-
-        slip = slip_of(record, result.residuals, list(result.residuals),
-                       model.meta.get("units", {}))
-        if slip is not None:
-            raise DataError(f"{record.path}: {slip}")
-    return dataclasses.replace(result, reduction=reduction)
+    return r0
 
 
 def _working_record(model, record: Record, probes, reduce: bool, progress):

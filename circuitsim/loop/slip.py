@@ -22,10 +22,10 @@ NEAR = 0.03
 GAIN = 0.2
 
 #: (the record's reading over the true value [-], what reads a column so), for any quantity
-PREFIXES = ((1e3, "a column in milli-units (mA, mV) read without its prefix, or in base "
-                  "units read as kilo-units"),
-            (1e-3, "a column in base units read as milli-units, or in kilo-units (kW) read "
-                   "without its prefix"),
+PREFIXES = ((1e3, ("a column in milli-units (mA, mV) read without its prefix, or in base "
+                   "units read as kilo-units")),
+            (1e-3, ("a column in base units read as milli-units, or in kilo-units (kW) read "
+                    "without its prefix")),
             (1e6, "a column in micro-units read without its prefix"),
             (1e-6, "a column in base units read as micro-units"))
 #: the same for a rotation speed [rad/s]
@@ -42,8 +42,8 @@ ANGLES = ((1 / (2 * math.pi), "a column in turns read as rad"),
           (2 * math.pi, "a column in rad read as turns"),
           (180 / math.pi, "a column in degrees read as rad"),
           (math.pi / 180, "a column in rad read as degrees"))
-SIGN = (-1.0, "a sensor or a probe of the opposite sign: the sensor wired the other way "
-              "round, or the probe's direction (a current into the node, not out of it)")
+SIGN = (-1.0, ("a sensor or a probe of the opposite sign: the sensor wired the other way "
+               "round, or the probe's direction (a current into the node, not out of it)"))
 
 
 def factors(unit: str) -> tuple[tuple[float, str], ...]:
@@ -51,6 +51,16 @@ def factors(unit: str) -> tuple[tuple[float, str], ...]:
     compact = unit.replace(" ", "")
     own = SPEEDS if compact in ("rad/s", "1/s") else ANGLES if compact == "rad" else ()
     return (SIGN, *PREFIXES, *own)
+
+
+def refuse(model, record, residuals: Mapping[str, np.ndarray]) -> None:
+    """Raise DataError naming the record when ``slip_of`` finds a slip on any probe of
+    ``residuals`` (record - the fitted ``model``)."""
+    from circuitsim.loop.record import DataError
+
+    slip = slip_of(record, residuals, list(residuals), model.meta.get("units", {}))
+    if slip is not None:
+        raise DataError(f"{record.path}: {slip}")
 
 
 def slip_of(record, residuals: Mapping[str, np.ndarray], probes: Sequence[str],
