@@ -1,6 +1,7 @@
-"""A record read in the wrong unit or with a reversed sensor (``loop.slip``): fit and diagnose
-refuse it with exit 2 and say which factor, instead of reporting a sensor gain at the edge of
-its range or "something remains that I cannot name"."""
+"""What a fit or a diagnosis meets first in a record: a record read in the wrong unit or with a
+reversed sensor (``loop.slip``) is refused with exit 2, naming the factor, instead of a sensor
+gain at the edge of its range or "something remains that I cannot name"; a slow model is
+told what its diagnosis will take."""
 
 from __future__ import annotations
 
@@ -81,3 +82,22 @@ def test_cli_diagnose_and_fit_exit_2_on_a_column_in_rpm_read_as_rad_s(motor, tmp
         assert main([cmd, str(path), str(csv), "--quiet"]) == 2
         err = capsys.readouterr().err
         assert "rpm read as rad/s" in err and "Traceback" not in err
+
+
+def test_a_slow_model_is_told_what_the_diagnosis_will_take(motor, monkeypatch):
+    """A model whose one simulation of the record takes long (a PWM bridge: 20 s) would be
+    diagnosed for hours in silence: after the declared fit's first simulation the diagnosis
+    says how long one took and what to expect, once. Here the threshold is set to 0 s."""
+    import circuitsim as cs
+    from circuitsim.loop.diagnose import engine
+
+    path, _, run = motor
+    lines: list[str] = []
+    monkeypatch.setattr(engine, "SLOW_RUN", 0.0)
+    engine.fit_declared(cs.load(path), _record(run), [], None, None, 1e-8, 4, lines.append)
+    said = [s for s in lines if "one simulation of the declared model" in s]
+    assert len(said) == 1 and "expect" in said[0] and "min" in said[0]
+    monkeypatch.setattr(engine, "SLOW_RUN", 60.0)
+    lines.clear()
+    engine.fit_declared(cs.load(path), _record(run), [], None, None, 1e-8, 4, lines.append)
+    assert not [s for s in lines if "one simulation" in s]

@@ -132,9 +132,10 @@ FIT_TOL = 1e-6
 
 def refit(setup: Setup, model, free: Sequence[str], params: Mapping[str, float],
           bounds: Mapping[str, tuple[float, float]], *, staged: bool = False,
-          nfev: int = 12, slip: bool = False):
+          nfev: int = 12, slip: bool = False, progress=None):
     """Least squares of ``free`` on the record, residuals weighted by the probes' noise;
-    ``slip``: refuse a record the model matches only after a unit's factor or a sign."""
+    ``slip``: refuse a record the model matches only after a unit's factor or a sign;
+    ``progress``: called with a line after each of the fit's simulations."""
     from circuitsim.loop.fit import fit_record
 
     with warnings.catch_warnings():
@@ -143,7 +144,8 @@ def refit(setup: Setup, model, free: Sequence[str], params: Mapping[str, float],
         return fit_record(model, setup.record, list(free), params=dict(params),
                           bounds=b or None, probes=list(setup.probes), rtol=setup.rtol,
                           staged=staged, max_nfev=nfev,
-                          weights=dict(setup.weights), tol=FIT_TOL, refuse_slip=slip)
+                          weights=dict(setup.weights), tol=FIT_TOL, refuse_slip=slip,
+                          progress=progress)
 
 
 def weighted_sse(setup: Setup, fit) -> float:

@@ -167,7 +167,7 @@ def fit_declared(netlist, record, free, probes, params, rtol, max_effects, progr
     first = Setup(record, names, {p: spread(record[p]) for p in names}, tuple(free), rtol,
                   max_effects, progress)
     fit0 = refit(first, model, list(free), dict(params or {}), {}, staged=True, nfev=100,
-                 slip=True)
+                 slip=True, progress=_first_run(first))
     weights = {p: _noise_weight(fit0.residuals[p], record[p]) for p in names}
     setup = Setup(record, names, weights, tuple(free), rtol, max_effects, progress)
     if free:  # refit with the noise weights (a probe counts by its signal-to-noise ratio)
@@ -175,6 +175,36 @@ def fit_declared(netlist, record, free, probes, params, rtol, max_effects, progr
     setup.log(f"declared fit: error {fit0.error:.4g}")
     return setup, ModelState(net.raw, model, list(free), dict(fit0.params), fit0, {}, [],
                              net.raw)
+
+
+#: Wall time of one simulation of the record [s] above which the diagnosis says what it will
+#: take: it runs the equivalent of several hundred (a PWM bridge's 6400 switchings in 40 ms
+#: take 20 s a run, and a diagnosis of it hours, in silence).
+SLOW_RUN = 1.0
+#: A diagnosis's wall time over one simulation's of its record (nine benchmark records, with
+#: their compiles: 46-886, median 141)
+RUNS = (50, 900)
+
+
+def _first_run(setup: Setup):
+    """A progress callback for the declared fit that, after its first simulation, says what
+    the diagnosis will take when one simulation takes longer than ``SLOW_RUN``."""
+    start = time.perf_counter()
+    said = []
+
+    def hear(_line: str) -> None:
+        if said:
+            return
+        said.append(True)
+        per = time.perf_counter() - start
+        if per > SLOW_RUN:
+            low, high = (n * per / 60.0 for n in RUNS)
+            setup.log(f"one simulation of the declared model over the record takes {per:.0f} s"
+                      f"; a diagnosis takes {RUNS[0]}-{RUNS[1]} times that: expect "
+                      f"{low:.0f}-{high:.0f} min. A shorter record, or a model without "
+                      f"switching events (an averaged bridge), is faster")
+
+    return hear
 
 
 def _bent_raws(raw, chosen: Sequence[Choice]) -> list:
