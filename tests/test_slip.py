@@ -101,3 +101,25 @@ def test_a_slow_model_is_told_what_the_diagnosis_will_take(motor, monkeypatch):
     lines.clear()
     engine.fit_declared(cs.load(path), _record(run), [], None, None, 1e-8, 4, lines.append)
     assert not [s for s in lines if "one simulation" in s]
+
+
+def test_a_run_that_fails_at_the_start_values_says_why(motor, monkeypatch):
+    """The fit's runs are tighter than a plain run (rtol 1e-8): an inverter that runs at its
+    own 1e-6 chatters there. The error carried only "fix the start values", and the user's
+    `circuitsim run` then passed; it now carries the run's own message and the rtol."""
+    import dataclasses
+
+    from circuitsim.errors import SolverError
+
+    _, model, run = motor
+    real = model.simulate
+
+    def failing(*args, **kwargs):
+        res = real(*args, **kwargs)
+        return dataclasses.replace(res, status=type(res.status).SOLVER_FAILED,
+                                   detail="INV.Sb switched 64 times within 1.8e-12 s")
+
+    monkeypatch.setattr(model, "simulate", failing)
+    with pytest.raises(SolverError) as got:
+        fit_record(model, _record(run), [], reduce=False)
+    assert "INV.Sb switched 64 times" in str(got.value) and "rtol 1e-08" in str(got.value)

@@ -7,6 +7,7 @@ import json
 import sys
 import warnings
 
+from circuitsim.cli.fit import _rtol
 from circuitsim.files import atomic_write, check_output
 from circuitsim.loop.diagnose import diagnose, diagnose_features
 from circuitsim.loop.diagnose.context import MAX_EFFECTS
@@ -57,6 +58,9 @@ def add_cli(sub) -> None:
                    help="use every row, even of a long record sampled far faster than its "
                         "content needs (by default such a record is filtered and reduced to a "
                         "working resolution, and the report says how)")
+    d.add_argument("--rtol", type=_rtol, default=1e-8,
+                   help="record: the integrator's rtol in every fit (default 1e-8, at most "
+                        "0.01); a looser one for a model that chatters on a switch's threshold")
     d.add_argument("--json", action="store_true", help="print the report (as --report) as JSON")
     d.add_argument("--quiet", action="store_true", help="no progress messages")
     d.set_defaults(func=cmd_diagnose)
@@ -120,7 +124,8 @@ def _run_diagnosis(args, net, model, free, overrides, say):
     probes = [s.strip() for item in args.probes or [] for s in item.split(",") if s.strip()]
     check_columns(probes, record.names, args.data)
     return diagnose(net, record, free, probes=probes or None, max_effects=args.max_effects,
-                    params=overrides, progress=say, reduce=not args.full_record)
+                    params=overrides, progress=say, reduce=not args.full_record,
+                    rtol=args.rtol)
 
 
 def _print(diag) -> None:

@@ -969,8 +969,11 @@ def _started(prob: _RecordProblem, z: np.ndarray, bounds) -> np.ndarray:
     calibrated from there (``_calibrate``)."""
     r0 = prob.full(z)
     if prob.failures:
-        raise SolverError("the simulation fails at the start values of the fit; run the "
-                          "netlist with them (`circuitsim run`) and fix the start values")
+        raise SolverError(f"the simulation fails at the start values of the fit, on the "
+                          f"record's times at rtol {prob.rtol:g} (a fit's simulations are "
+                          f"tighter than a plain run's): {prob.why or 'no reason given'}. "
+                          f"Fix what it names, or the start values; a looser rtol (--rtol) "
+                          f"may pass where the model sits on a threshold")
     if np.any(~prob.space.log & (prob.space.start == 0.0)):
         prob.space = _calibrate(prob.space, prob.full, z, r0, bounds)
         prob.failures = 0
@@ -1024,6 +1027,7 @@ class _RecordProblem:
         self.t = np.asarray(record.t, float)
         self.atol = atol if atol is not None else model.netlist.analysis.atol
         self.failures = 0
+        self.why = ""  # the last failed run's message
         self.say = say
         self.stage, self.runs = "start", 0
         self.W = smoothing_windows(self.t, self.data)
@@ -1051,6 +1055,7 @@ class _RecordProblem:
         except ParameterError:
             return None
         if not res.success or res.t.size != self.t.size:
+            self.why = res.message or f"{res.t.size} of {self.t.size} output times"
             res = None
         if rtol is None:
             self.remember(key, res)
