@@ -26,6 +26,7 @@ a trusted cache folder, and on a single core.
 from __future__ import annotations
 
 import atexit
+import contextlib
 import hashlib
 import os
 import pickle
@@ -88,6 +89,7 @@ class _Worker:
                 self.running = self.compiling = None
                 self._next()
                 self.cond.notify_all()
+        self.proc.stdout.close()  # the worker has ended: its pipe is not left to the GC
         with self.cond:
             self.alive, self.running, self.compiling = False, None, None
             self.queue.clear()
@@ -154,6 +156,8 @@ class _Worker:
             self.proc.wait(timeout=1)
         except (OSError, subprocess.TimeoutExpired):
             self.proc.kill()
+            with contextlib.suppress(subprocess.TimeoutExpired):
+                self.proc.wait(timeout=5)  # reaped: no zombie, no "still running" warning
 
 
 _WORKER: list[_Worker | None] = []
