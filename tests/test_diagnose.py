@@ -1628,6 +1628,11 @@ def test_clock_hint_only_for_a_gross_misfit_on_a_late_clock():
     assert clock_hints(late, 0.9 * GROSS_MISFIT) == []
     assert clock_hints(early, 1.16) == []
     assert clock_hints(0.3 + early, 1.16) == []  # starts within its own length
+    # a record in ms read as s: it runs to 400 "s" where the netlist's analysis stops at 0.4
+    (hint,) = clock_hints(early * 1000, 1.16, stop=0.4)
+    assert "1e+03 times the netlist's analysis" in hint and "time [ms]" in hint
+    assert clock_hints(early * 1000, 0.9 * GROSS_MISFIT, stop=0.4) == []
+    assert clock_hints(early * 10, 1.16, stop=0.4) == []  # a long record, in seconds
 
 
 def test_noise_line_named_for_hum_never_for_coloured_noise():

@@ -207,6 +207,13 @@ def _first_run(setup: Setup):
     return hear
 
 
+def _stop(model) -> float | None:
+    """The netlist's own analysis stop [s], None when it has none."""
+    analysis = getattr(getattr(model, "netlist", None), "analysis", None)
+    stop = getattr(analysis, "stop", None)
+    return float(stop) if stop else None
+
+
 def _bent_raws(raw, chosen: Sequence[Choice]) -> list:
     """The law test's bent circuits of the netlist ``raw`` with the effects ``chosen``, last
     first: when the search ends, this process takes the first it tests off the line and
@@ -1298,4 +1305,5 @@ def report(setup: Setup, state0: ModelState, state: ModelState, log: dict[str, A
     return Diagnosis(fit0.error, final.error, dict(fit0.errors), dict(final.errors), accepted,
                      log["indistinct"], rest, analysis0, analysis1, raw, fit0, final,
                      setup.record, dict(clock), log["rejected"], corrections,
-                     dict(setup.weights), hints=clock_hints(setup.record.t, final.error))
+                     dict(setup.weights), hints=clock_hints(setup.record.t, final.error,
+                                                            _stop(state0.model)))

@@ -117,19 +117,34 @@ class Diagnosis:
 GROSS_MISFIT = 0.5
 
 
-def clock_hints(t: np.ndarray, error: float) -> list[str]:
+#: how many times the netlist's own analysis a record must span before a gross misfit
+#: questions its time unit (``clock_hints``): a record in ms read as s spans 1000 times it
+LONG_SPAN = 100.0
+
+
+def clock_hints(t: np.ndarray, error: float, stop: float | None = None) -> list[str]:
     """What to check when the model, effects and all, still misses the record grossly
-    (``GROSS_MISFIT``) and the record's clock starts later than its own length: the netlist's
-    inputs act from t = 0, so a logger's clock that did not start with the experiment puts
-    every step of the model at the wrong time, and no effect can mend that."""
+    (``GROSS_MISFIT``): a record's clock that starts later than its own length (the
+    netlist's inputs act from t = 0, so a logger's clock that did not start with the
+    experiment puts every step of the model at the wrong time, and no effect can mend that),
+    and a record that spans ``LONG_SPAN`` times the netlist's analysis ``stop`` [s] or more
+    (a time column in ms or us read as s)."""
     t0, length = float(t[0]), float(t[-1] - t[0])
-    if not (error >= GROSS_MISFIT and t0 > length):
+    if error < GROSS_MISFIT:
         return []
-    return [(f"the model still misses the record by {error:.0%} of its spread, and the "
-            f"record starts at t = {t0:.6g} s, after {t0 / length:.3g} times its own length: "
-            f"the model is simulated from t = 0 with the netlist's inputs. If the record's "
-            f"clock did not start with the netlist's, shift its time column (subtract "
-            f"{t0:.6g} s) or move the inputs' times")]
+    out = []
+    if t0 > length:
+        out.append(f"the model still misses the record by {error:.0%} of its spread, and the "
+                   f"record starts at t = {t0:.6g} s, after {t0 / length:.3g} times its own "
+                   f"length: the model is simulated from t = 0 with the netlist's inputs. If "
+                   f"the record's clock did not start with the netlist's, shift its time "
+                   f"column (subtract {t0:.6g} s) or move the inputs' times")
+    if stop and stop > 0 and float(t[-1]) >= LONG_SPAN * stop:
+        out.append(f"the model still misses the record by {error:.0%} of its spread, and the "
+                   f"record runs to t = {float(t[-1]):.6g} s, {float(t[-1]) / stop:.3g} times "
+                   f"the netlist's analysis (stop {stop:.6g} s). If its time column is in ms "
+                   f"or us, say so in its header ('time [ms]')")
+    return out
 
 
 def _caveat(a: Accepted) -> str:
