@@ -15,6 +15,7 @@ import pytest
 import circuitsim as cs
 from circuitsim.errors import CircuitWarning, NetlistError, ParameterError
 
+from conftest import NETLISTS
 from ngspice import require_ngspice, run_ngspice
 
 DECKS = Path(__file__).resolve().parent / "decks"
@@ -190,22 +191,12 @@ def test_corners_of_two_sources_an_ulp_apart_restart_after_both(compile_text) ->
     assert np.allclose(res["i2"], pwl / 2, atol=1e-9)
 
 
-def test_a_fast_rise_at_t0_is_resolved_however_long_the_run(compile_text) -> None:
+def test_a_fast_rise_at_t0_is_resolved_however_long_the_run() -> None:
     """A step with a 1 ns rise at t = 0, read 100 s later (a record whose clock runs on from
     the inputs'): its two corners were merged when the merge distance was relative to the
     run's length (1e-11 * 100 s = 1 ns), and IDA failed at t = 0. The DC motor's steady speed
     is its closed form k V / (k^2 + b R) [rad/s]."""
-    model = compile_text("""
-        components:
-          - {name: V1, type: V, p: a, n: gnd, V: {step: {v1: 12 V, rise: 1 ns}}}
-          - {name: Rw, type: R, p: a, n: b, R: 1 ohm}
-          - {name: Lw, type: L, p: b, n: c, L: 1 mH}
-          - {name: M, type: emf, p: c, n: gnd, shaft: rotor, k_t: 0.05 N*m/A}
-          - {name: Jr, type: inertia, shaft: rotor, J: 1e-5 kg*m^2}
-          - {name: Bv, type: damper, shaft: rotor, b: 1e-5 N*m*s/rad}
-        probes: {speed: rotor.w}
-        analysis: {stop: 0.5, step: 50 us}
-    """)
+    model = cs.compile(cs.load(NETLISTS / "examples" / "dc_motor.yaml"))
     t = np.linspace(100.0, 100.5, 101)
     res = model.simulate(stop=float(t[-1]), t_eval=t, rtol=1e-8)
     assert res.success, res.message

@@ -15,28 +15,18 @@ from circuitsim.loop.fit import fit_record
 from circuitsim.loop.record import DataError, Record
 from circuitsim.loop.slip import slip_of
 
-MOTOR = """title: DC motor, 12 V step
-components:
-  - {name: V1, type: V, p: a, n: gnd, V: {step: {v1: 12 V, rise: 1 ns}}}
-  - {name: Rw, type: R, p: a, n: b, R: 1 ohm}
-  - {name: Lw, type: L, p: b, n: c, L: 1 mH}
-  - {name: M, type: emf, p: c, n: gnd, shaft: rotor, k_t: 0.05 N*m/A}
-  - {name: Jr, type: inertia, shaft: rotor, J: 1e-5 kg*m^2}
-  - {name: Bv, type: damper, shaft: rotor, b: 1e-5 N*m*s/rad}
-probes: {speed: rotor.w, i: Lw.i}
-analysis: {stop: 0.05, step: 50 us}
-"""
+from conftest import NETLISTS
+
+MOTOR = NETLISTS / "examples" / "dc_motor.yaml"  # 12 V step on a DC motor, k_e = k_t
 
 
 @pytest.fixture(scope="module")
-def motor(tmp_path_factory):
+def motor():
     """(the netlist's path, the compiled model, its run on the analysis grid)."""
     import circuitsim as cs
 
-    path = tmp_path_factory.mktemp("slip") / "motor.yaml"
-    path.write_text(MOTOR)
-    model = cs.compile(cs.load(path))
-    return path, model, model.simulate()
+    model = cs.compile(cs.load(MOTOR))
+    return MOTOR, model, model.simulate(stop=0.05)
 
 
 def _record(run, speed: float = 1.0, current: float = 1.0, seed: int = 3) -> Record:
