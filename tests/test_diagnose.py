@@ -1633,6 +1633,9 @@ def test_clock_hint_only_for_a_gross_misfit_on_a_late_clock():
     assert "1e+03 times the netlist's analysis" in hint and "time [ms]" in hint
     assert clock_hints(early * 1000, 0.9 * GROSS_MISFIT, stop=0.4) == []
     assert clock_hints(early * 10, 1.16, stop=0.4) == []  # a long record, in seconds
+    (hint,) = clock_hints(1000.0 + early, 1.16, stop=0.4)  # a late clock: its hint alone
+    assert "subtract 1000 s" in hint
+    assert clock_hints(late, float("nan")) == []  # every probe flat: no misfit to explain
 
 
 def test_noise_line_named_for_hum_never_for_coloured_noise():

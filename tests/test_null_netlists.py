@@ -26,7 +26,7 @@ def _null_record(net, seed: int = 5) -> Record:
     model = cs.compile(net)
     run = model.simulate()
     assert run.success, run.message
-    k = max(1, run.t.size // 20000)
+    k = max(1, -(-run.t.size // 20000))
     rng = np.random.default_rng(seed)
     cols = {}
     for p in model.probe_names:

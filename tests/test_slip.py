@@ -44,6 +44,7 @@ def _record(run, speed: float = 1.0, current: float = 1.0, seed: int = 3) -> Rec
     (2 * math.pi / 60, 1.0, "rad/s read as rpm"),
     (1.0, -1.0, "opposite sign"),
     (1.0, 1e-3, "read as milli-units"),
+    (-60 / (2 * math.pi), 1.0, "rpm read as rad/s, with the sign reversed"),
 ])
 def test_a_unit_or_sign_slip_is_refused_naming_its_factor(motor, speed, current, words):
     _, model, run = motor
@@ -113,3 +114,41 @@ def test_a_run_that_fails_at_the_start_values_says_why(motor, monkeypatch):
     with pytest.raises(SolverError) as got:
         fit_record(model, _record(run), [], reduce=False)
     assert "INV.Sb switched 64 times" in str(got.value) and "rtol 1e-08" in str(got.value)
+
+
+def test_a_periodic_record_on_a_late_clock_is_left_to_the_clock_hint():
+    """A 50 Hz current whose record starts 10 ms late reads as the model's negative; its
+    clock starts after its own length, so the slip check leaves it to ``clock_hints``."""
+    t = 0.5 + np.linspace(0.0, 0.1, 1001)
+    model_i = np.sin(2 * np.pi * 50 * t)
+    rec = Record(t, {"i": -model_i}, "late.csv")
+    assert slip_of(rec, {"i": -2 * model_i}, ["i"], {"i": "A"}) is None
+    early = Record(t - 0.5, {"i": -model_i}, "early.csv")
+    assert "opposite sign" in slip_of(early, {"i": -2 * model_i}, ["i"], {"i": "A"})
+
+
+def test_of_overlapping_factors_the_one_that_mends_most_is_named():
+    """57.3 (deg/s read as rad/s) and 60 (rpm read as rev/s) are both within 3 % of 58.9:
+    the record is 58.8 times the model, and 60 (rpm read as rev/s) mends more."""
+    t = np.linspace(0.0, 1.0, 501)
+    w = 1.0 + t
+    rec = Record(t, {"w": 60.0 * w * 0.98}, "w.csv")  # g = 58.8
+    said = slip_of(rec, {"w": 60.0 * w * 0.98 - w}, ["w"], {"w": "rad/s"})
+    assert said is not None and "rpm read as rev/s" in said
+
+
+def test_the_slow_notice_waits_for_a_simulation_not_for_the_reduction(monkeypatch):
+    """A long record's reduction speaks before any simulation: the notice times the first
+    line the fit says after a simulation."""
+    from circuitsim.loop.diagnose import engine
+    from circuitsim.loop.diagnose.context import Setup
+
+    lines: list[str] = []
+    monkeypatch.setattr(engine, "SLOW_RUN", 0.0)
+    setup = Setup(None, (), {}, (), 1e-8, 4, lines.append)
+    hear = engine._first_run(setup)
+    hear("record: 120001 rows; finding its content")
+    assert not lines
+    hear("start: 1 simulations, cost 12.5")
+    hear("start: 2 simulations, cost 12.5")
+    assert len(lines) == 1 and "one simulation of the declared model" in lines[0]

@@ -970,10 +970,10 @@ def _started(prob: _RecordProblem, z: np.ndarray, bounds) -> np.ndarray:
     r0 = prob.full(z)
     if prob.failures:
         raise SolverError(f"the simulation fails at the start values of the fit, on the "
-                          f"record's times at rtol {prob.rtol:g} (a fit's simulations are "
+                          f"record's times at the fit's rtol {prob.rtol:g} (by default "
                           f"tighter than a plain run's): {prob.why or 'no reason given'}. "
-                          f"Fix what it names, or the start values; a looser rtol (--rtol) "
-                          f"may pass where the model sits on a threshold")
+                          f"Fix what it names, or the start values; a looser rtol may pass "
+                          f"where the model sits on a threshold")
     if np.any(~prob.space.log & (prob.space.start == 0.0)):
         prob.space = _calibrate(prob.space, prob.full, z, r0, bounds)
         prob.failures = 0
@@ -1055,7 +1055,8 @@ class _RecordProblem:
         except ParameterError:
             return None
         if not res.success or res.t.size != self.t.size:
-            self.why = res.message or f"{res.t.size} of {self.t.size} output times"
+            self.why = (res.message if not res.success else
+                        f"it gave {res.t.size} of {self.t.size} output times")
             res = None
         if rtol is None:
             self.remember(key, res)

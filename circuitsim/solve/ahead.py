@@ -77,23 +77,29 @@ class _Worker:
     def _read(self) -> None:
         """Collect the worker's reports ('start <key>' when it compiles, 'done <key>' when
         the job is over) and feed it the next job."""
-        for line in self.proc.stdout:
-            what, _, key = line.decode().strip().partition(" ")
-            with self.cond:
-                if what == "start":
-                    self.compiling = key
-                    continue
-                if what != "done":  # not a report (a stray print in the worker)
-                    continue
-                self.done.add(key)
-                self.running = self.compiling = None
-                self._next()
-                self.cond.notify_all()
-        self.proc.stdout.close()  # the worker has ended: its pipe is not left to the GC
+        try:
+            for line in self.proc.stdout:
+                self._heard(line.decode(errors="replace").strip())
+        except (OSError, ValueError):  # the pipe broke or was closed under the reader
+            pass
+        finally:
+            self.proc.stdout.close()  # the worker has ended: its pipe is not left to the GC
         with self.cond:
             self.alive, self.running, self.compiling = False, None, None
             self.queue.clear()
             self.cond.notify_all()
+
+    def _heard(self, line: str) -> None:
+        """One report line of the worker."""
+        what, _, key = line.partition(" ")
+        with self.cond:
+            if what == "start":
+                self.compiling = key
+            elif what == "done":  # anything else is no report (a stray print in the worker)
+                self.done.add(key)
+                self.running = self.compiling = None
+                self._next()
+                self.cond.notify_all()
 
     def _next(self) -> None:
         """Send the first queued job when the worker is idle (the caller holds the lock)."""

@@ -28,6 +28,7 @@ from circuitsim.solve.integrate import (
     consistent_start,
     corners,
     integrate_system,
+    merged,
     settings,
     simulate,
 )
@@ -75,7 +76,7 @@ def simulate_batch(model, params_list: Sequence[Mapping[str, float] | None],
     rec = Recorder(None, 1)
     start = (np.concatenate([s[0] for s in starts]), np.concatenate([s[1] for s in starts]))
     status, _, nfev, njev = integrate_system(_stacked(model, run, ps, nearby), run,
-                                             _merge(edges, run),
+                                             merged(edges[1:-1], run.stop),
                                              start, rec, 50_000)
     if status is not Status.OK:
         return [_solo(model, run, q) for q in sets]
@@ -127,17 +128,6 @@ def moved(point: SimResult, local: SimResult, member: SimResult) -> SimResult:
 def _solo(model, run: Settings, params: dict) -> SimResult:
     return simulate(model, run.stop, params, t_eval=run.t_eval, rtol=run.rtol, atol=run.atol,
                     max_step=run.max_step, init=run.init)
-
-
-def _merge(edges: list[float], run: Settings) -> list[float]:
-    """The members' corners as one list; ones closer than IDA can resolve become one."""
-    eps = 1e-11 * run.stop
-    out = [0.0]
-    for b in edges:
-        if b - out[-1] > eps:
-            out.append(b)
-    out[-1] = run.stop
-    return out
 
 
 def _stacked(model, run: Settings, ps: list[tuple], nearby: bool = False) -> System:

@@ -12,7 +12,7 @@ from __future__ import annotations
 import dataclasses
 import itertools
 import math
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 
 import numpy as np
@@ -190,13 +190,19 @@ def consistent_start(model, run: Settings, params: Mapping[str, float] | None, p
 
 
 def corners(model, values: Mapping[str, float], stop: float) -> list[float]:
-    """0, the waveform corners, stop; corners closer than IDA can resolve
-    (|tout - t0| ~ 1e-13 t; merged below 1e-11 t) are merged into one, the latest of them: a restart there sees
-    every merged corner behind it, so the consistent y' takes each source's slope after its
-    corner (a pwl's corner at 0.6 ms and a pulse's at 0.1 ms + 0.5 ms, an ulp later: the
-    restart at the earlier took the pulse's flat slope before its rise and IDA failed)."""
+    """0, the waveform corners, stop (``merged``)."""
+    return merged(_break_times(model, values, stop), stop)
+
+
+def merged(times: Iterable[float], stop: float) -> list[float]:
+    """0, the sorted corner ``times`` [s], ``stop``; corners closer than IDA can resolve
+    (|tout - t0| ~ 1e-13 t; merged below 1e-11 t) are merged into one, the latest of them: a
+    restart there sees every merged corner behind it, so the consistent y' takes each
+    source's slope after its corner (a pwl's corner at 0.6 ms and a pulse's at 0.1 ms + 0.5
+    ms, an ulp later: the restart at the earlier took the pulse's flat slope before its rise
+    and IDA failed)."""
     edges = [0.0]
-    for b in [*_break_times(model, values, stop), stop]:
+    for b in [*times, stop]:
         # relative to the corner's own time, not to stop: a 1 ns rise at t = 0 is two
         # corners IDA resolves however long the run (one 100 s long merged them, and the
         # integrator met the rise as a discontinuity)

@@ -8,7 +8,7 @@ netlist, compiled model, free parameters, fit, and what has been accepted so far
 from __future__ import annotations
 
 import warnings
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -132,7 +132,8 @@ FIT_TOL = 1e-6
 
 def refit(setup: Setup, model, free: Sequence[str], params: Mapping[str, float],
           bounds: Mapping[str, tuple[float, float]], *, staged: bool = False,
-          nfev: int = 12, slip: bool = False, progress=None):
+          nfev: int = 12, slip: bool = False,
+          progress: Callable[[str], None] | None = None):
     """Least squares of ``free`` on the record, residuals weighted by the probes' noise;
     ``slip``: refuse a record the model matches only after a unit's factor or a sign;
     ``progress``: called with a line after each of the fit's simulations."""

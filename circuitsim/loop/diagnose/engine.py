@@ -181,21 +181,23 @@ def fit_declared(netlist, record, free, probes, params, rtol, max_effects, progr
 #: take: it runs the equivalent of several hundred (a PWM bridge's 6400 switchings in 40 ms
 #: take 20 s a run, and a diagnosis of it hours, in silence).
 SLOW_RUN = 1.0
-#: A diagnosis's wall time over one simulation's of its record (nine benchmark records, with
-#: their compiles: 46-886, median 141)
+#: A diagnosis's wall time over one simulation's of its record [-] (nine benchmark records,
+#: with their compiles: 46-886, median 141)
 RUNS = (50, 900)
 
 
-def _first_run(setup: Setup):
+def _first_run(setup: Setup) -> Callable[[str], None]:
     """A progress callback for the declared fit that, after its first simulation, says what
-    the diagnosis will take when one simulation takes longer than ``SLOW_RUN``."""
+    the diagnosis will take when one simulation takes longer than ``SLOW_RUN``. Only the
+    fit's lines after a simulation count (a long record's reduction speaks before any)."""
     start = time.perf_counter()
-    said = []
+    said = False
 
-    def hear(_line: str) -> None:
-        if said:
+    def hear(line: str) -> None:
+        nonlocal said
+        if said or " simulations, cost " not in line:
             return
-        said.append(True)
+        said = True
         per = time.perf_counter() - start
         if per > SLOW_RUN:
             low, high = (n * per / 60.0 for n in RUNS)
@@ -208,10 +210,14 @@ def _first_run(setup: Setup):
 
 
 def _stop(model) -> float | None:
-    """The netlist's own analysis stop [s], None when it has none."""
-    analysis = getattr(getattr(model, "netlist", None), "analysis", None)
-    stop = getattr(analysis, "stop", None)
-    return float(stop) if stop else None
+    """The analysis stop [s] the netlist states, None when it states none (the default 0.1 s
+    says nothing of the record the author had in mind)."""
+    net = getattr(model, "netlist", None)
+    raw = getattr(net, "raw", None)
+    if raw is None or "stop" not in (getattr(raw, "analysis", None) or {}):
+        return None
+    stop = float(net.analysis.stop)
+    return stop if stop > 0 else None
 
 
 def _bent_raws(raw, chosen: Sequence[Choice]) -> list:

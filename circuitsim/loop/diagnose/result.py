@@ -118,7 +118,7 @@ GROSS_MISFIT = 0.5
 
 
 #: how many times the netlist's own analysis a record must span before a gross misfit
-#: questions its time unit (``clock_hints``): a record in ms read as s spans 1000 times it
+#: questions its time unit (``clock_hints``) [-]: a record in ms read as s spans 1000 times it
 LONG_SPAN = 100.0
 
 
@@ -130,7 +130,7 @@ def clock_hints(t: np.ndarray, error: float, stop: float | None = None) -> list[
     and a record that spans ``LONG_SPAN`` times the netlist's analysis ``stop`` [s] or more
     (a time column in ms or us read as s)."""
     t0, length = float(t[0]), float(t[-1] - t[0])
-    if error < GROSS_MISFIT:
+    if not error >= GROSS_MISFIT:  # a NaN error (every probe flat) asks nothing
         return []
     out = []
     if t0 > length:
@@ -139,11 +139,11 @@ def clock_hints(t: np.ndarray, error: float, stop: float | None = None) -> list[
                    f"length: the model is simulated from t = 0 with the netlist's inputs. If "
                    f"the record's clock did not start with the netlist's, shift its time "
                    f"column (subtract {t0:.6g} s) or move the inputs' times")
-    if stop and stop > 0 and float(t[-1]) >= LONG_SPAN * stop:
+    elif stop and stop > 0 and length >= LONG_SPAN * stop:
         out.append(f"the model still misses the record by {error:.0%} of its spread, and the "
-                   f"record runs to t = {float(t[-1]):.6g} s, {float(t[-1]) / stop:.3g} times "
-                   f"the netlist's analysis (stop {stop:.6g} s). If its time column is in ms "
-                   f"or us, say so in its header ('time [ms]')")
+                   f"record spans {length:.6g} s, {length / stop:.3g} times the netlist's "
+                   f"analysis (stop {stop:.6g} s). If its time column is in ms or us, say so "
+                   f"in its header ('time [ms]')")
     return out
 
 
