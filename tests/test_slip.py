@@ -152,3 +152,19 @@ def test_the_slow_notice_waits_for_a_simulation_not_for_the_reduction(monkeypatc
     hear("start: 1 simulations, cost 12.5")
     hear("start: 2 simulations, cost 12.5")
     assert len(lines) == 1 and "one simulation of the declared model" in lines[0]
+
+
+def test_a_record_kept_whole_is_fitted_whole(motor):
+    """``--full-record`` (``diagnose(reduce=False)``): the declared fit works on every row
+    of a long record; it was reduced again inside the fit (400 001 rows fitted on 50 001)."""
+    import circuitsim as cs
+    from circuitsim.loop.diagnose import engine
+
+    path, model, _ = motor
+    t = np.linspace(0.0, 0.5, 400_001)
+    run = model.simulate(stop=0.5, t_eval=t)
+    rng = np.random.default_rng(2)
+    rec = Record(t, {p: np.asarray(run[p]) + 1e-3 * rng.standard_normal(t.size)
+                     for p in ("speed", "i")}, "long.csv")
+    _, state = engine.fit_declared(cs.load(path), rec, [], None, None, 1e-8, 4, None)
+    assert all(np.asarray(r).size == t.size for r in state.fit.residuals.values())

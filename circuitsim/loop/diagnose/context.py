@@ -134,7 +134,9 @@ def refit(setup: Setup, model, free: Sequence[str], params: Mapping[str, float],
           bounds: Mapping[str, tuple[float, float]], *, staged: bool = False,
           nfev: int = 12, slip: bool = False,
           progress: Callable[[str], None] | None = None):
-    """Least squares of ``free`` on the record, residuals weighted by the probes' noise;
+    """Least squares of ``free`` on the record, residuals weighted by the probes' noise
+    (``setup.record`` is the working record already: reduced again, a long one that the user
+    asked to keep whole, ``--full-record``, was cut to 50 001 rows);
     ``slip``: refuse a record the model matches only after a unit's factor or a sign;
     ``progress``: called with a line after each of the fit's simulations."""
     from circuitsim.loop.fit import fit_record
@@ -146,7 +148,7 @@ def refit(setup: Setup, model, free: Sequence[str], params: Mapping[str, float],
                           bounds=b or None, probes=list(setup.probes), rtol=setup.rtol,
                           staged=staged, max_nfev=nfev,
                           weights=dict(setup.weights), tol=FIT_TOL, refuse_slip=slip,
-                          progress=progress)
+                          progress=progress, reduce=False)
 
 
 def weighted_sse(setup: Setup, fit) -> float:
