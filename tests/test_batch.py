@@ -107,3 +107,21 @@ def test_steps_too_many_for_one_band_run_in_batches_led_by_the_point(monkeypatch
         # proportional to the step: the first member's difference times j
         first = chunked[1]["speed"] - chunked[0]["speed"]
         assert np.max(np.abs(got - j * first)) < 2e-3 * size
+
+
+def test_a_late_record_is_run_as_one_batch(monkeypatch):
+    """A 1 ns rise at t = 0 read from t = 100 s: the batch merges its corners by the solo
+    run's rule (relative to the corner's time), so it integrates as one batch. With the
+    run's length as the measure it merged them, failed at t = 0 and ran each member alone."""
+    from circuitsim.solve import batch as batch_mod
+
+    model = cs.compile(cs.load(NETLISTS / "examples" / "dc_motor.yaml"))
+    alone = []
+    real = batch_mod._solo
+    monkeypatch.setattr(batch_mod, "_solo", lambda *a, **k: alone.append(1) or real(*a, **k))
+    t = np.linspace(100.0, 100.05, 51)
+    runs = batch_mod.simulate_batch(model, [{"Rw.R": 1.0}, {"Rw.R": 1.01}], stop=100.05,
+                                    t_eval=t)
+    assert not alone and all(r.success for r in runs)
+    k, V, b = 0.05, 12.0, 1e-5
+    assert runs[0]["speed"] == pytest.approx(k * V / (k**2 + b * 1.0), rel=1e-6)

@@ -25,8 +25,8 @@ from circuitsim.solve.integrate import (
     Settings,
     System,
     _finite,
+    break_times,
     consistent_start,
-    corners,
     integrate_system,
     merged,
     settings,
@@ -72,11 +72,13 @@ def simulate_batch(model, params_list: Sequence[Mapping[str, float] | None],
     starts = [consistent_start(model, run, q, p) for q, p in zip(sets, ps, strict=True)]
     if any(isinstance(s, str) for s in starts):  # report each member as it would alone
         return [_solo(model, run, q) for q in sets]
-    edges = sorted({e for v in values for e in corners(model, v, run.stop)})
+    # every member's corners, merged as one run's
+    edges = merged(sorted({b for v in values for b in break_times(model, v, run.stop)}),
+                   run.stop)
     rec = Recorder(None, 1)
     start = (np.concatenate([s[0] for s in starts]), np.concatenate([s[1] for s in starts]))
     status, _, nfev, njev = integrate_system(_stacked(model, run, ps, nearby), run,
-                                             merged(edges[1:-1], run.stop),
+                                             edges,
                                              start, rec, 50_000)
     if status is not Status.OK:
         return [_solo(model, run, q) for q in sets]

@@ -25,7 +25,8 @@ from circuitsim.solve.result import SimResult, Status
 from circuitsim.solve.sources import bound_step
 
 
-def _break_times(model, values: Mapping[str, float], stop: float) -> list[float]:
+def break_times(model, values: Mapping[str, float], stop: float) -> list[float]:
+    """The waveform corners [s] strictly between 0 and ``stop``, sorted, at ``values``."""
     from circuitsim.component import WAVEFORMS
     from circuitsim_components import waveforms  # noqa: F401 - registry
 
@@ -191,7 +192,7 @@ def consistent_start(model, run: Settings, params: Mapping[str, float] | None, p
 
 def corners(model, values: Mapping[str, float], stop: float) -> list[float]:
     """0, the waveform corners, stop (``merged``)."""
-    return merged(_break_times(model, values, stop), stop)
+    return merged(break_times(model, values, stop), stop)
 
 
 def merged(times: Iterable[float], stop: float) -> list[float]:

@@ -134,9 +134,9 @@ def refit(setup: Setup, model, free: Sequence[str], params: Mapping[str, float],
           bounds: Mapping[str, tuple[float, float]], *, staged: bool = False,
           nfev: int = 12, slip: bool = False,
           progress: Callable[[str], None] | None = None):
-    """Least squares of ``free`` on the record, residuals weighted by the probes' noise
-    (``setup.record`` is the working record already: reduced again, a long one that the user
-    asked to keep whole, ``--full-record``, was cut to 50 001 rows);
+    """Least squares of ``free`` on the record, residuals weighted by the probes' noise.
+    ``setup.record`` is the working record already and is fitted as it is (a long one the
+    user keeps whole, ``--full-record``, stays whole);
     ``slip``: refuse a record the model matches only after a unit's factor or a sign;
     ``progress``: called with a line after each of the fit's simulations."""
     from circuitsim.loop.fit import fit_record
