@@ -31,7 +31,9 @@ class Law:
     """Where and how an effect acts, for the test of its law (``loop/diagnose/law.py``).
 
     place : ("series", component) -- a voltage in series with it; ("torque", node) or
-        ("force", node) -- applied to a body; ("probe", probe) -- the sensor's reading.
+        ("force", node) -- applied to a body; ("coupling", component) -- a torque between
+        a torsional coupling's two flanges, beside its own; ("probe", probe) -- the sensor's
+        reading.
     value : the expression of what the effect adds there [V, N*m, N], in its own
         parameters and circuit quantities (for a probe: "gain", "offset" or "delay").
     terms : (driver expression, shape) pairs: the law is tested for a dependence on each
@@ -335,8 +337,11 @@ def _mechanical(net: Netlist, orders: Mapping[str, list[int]]) -> list[Candidate
                         "harmonics": [{"order": k, "amplitude": a, "phase": 0},
                                       {"order": k, "amplitude": b, "phase": 1.5707963267948966}]
                     }), steps={a: 1e-4, b: 1e-4},
+                    # one weight's moment has the same amplitude at every angle: an
+                    # unbalance is bent by the angle too (a wind on a raised boom, -10 +
+                    # 10 cos 2 angle over its quarter turn, is no weight)
                     law=_speed_law(node, True, f"{a}*sin({k}*{node}.phi) + "
-                                               f"{b}*cos({k}*{node}.phi)")))
+                                               f"{b}*cos({k}*{node}.phi)", turn=k == 1)))
     return out
 
 
@@ -508,7 +513,12 @@ def _couplings(net: Netlist) -> list[Candidate]:
             f"a play (backlash) of total width gap in the coupling {c.name}: no torque "
             f"while the twist is within gap/2",
             lambda r, n=c.name, g=g: _backlash(r, n, g), steps={g: 1e-3}, grid=GAP_GRID,
-            slope=True))
+            slope=True,
+            # a play's sides are the declared coupling's: in contact it is as stiff both
+            # ways and at every twist; a coupling stiffer one way (a crack that opens under
+            # tension) or hardening with the twist is no play
+            law=Law(("coupling", c.name), f"{c.name}.tau",
+                    ((f"{c.name}.phi_rel", "centred"), (f"{c.name}.phi_rel", "abs")))))
     return out
 
 

@@ -12,7 +12,7 @@ the record still holds.
 The test lets the law bend: the effect's own contribution is multiplied by (1 + a1 psi1(u) +
 a2 psi2(u) ...), the psi low-order shapes of the quantities the law reads or might read
 (``effects.Law.terms``: |i|, i^2, |w|, w^2, the angle about its mean or once per turn, the
-time), each a new parameter with null 0, so that the patched circuit is the accepted one
+time, a coupling's twist about its mean and its size), each a new parameter with null 0, so that the patched circuit is the accepted one
 exactly at a = 0. Their sensitivities come from one batched run of that circuit (inside the
 dynamics: a torque that depends on the speed feeds back through the speed), with the
 effect's own. A sensor's law is bent on its reading alone: a gain's reading by its size, an
@@ -305,13 +305,20 @@ def bent_raw(raw: Any, law: Any, names: Sequence[tuple[str, str, str]] | None = 
 
 def _act(raw: Any, place: tuple[str, str], prefix: str, expr: str) -> None:
     """Patch ``expr`` into ``raw`` where ``place`` says: in series with a component, as a
-    torque on a shaft or as a force on a flange."""
+    torque on a shaft, as a force on a flange, or as a torque between a coupling's flanges
+    beside its own (into flange a, as the coupling's ``tau`` is: -expr acts on shaft a and
+    +expr on shaft b)."""
     from circuitsim.loop.effects import add_part, insert_series
 
     where, target = place
     name = f"{prefix}_{target.replace('.', '_')}"
     if where == "series":
         insert_series(raw, target, name, expr)
+    elif where == "coupling":
+        entry = raw.component_entry(target)
+        for pin, sign in (("a", "-"), ("b", "")):
+            add_part(raw, {"name": f"{name}_{pin}", "type": "btorque",
+                           "shaft": str(entry[pin]), "expr": f"{sign}({expr})"})
     elif where == "torque":
         add_part(raw, {"name": name, "type": "btorque", "shaft": target, "expr": expr})
     else:
