@@ -38,7 +38,8 @@ class Law:
         parameters and circuit quantities (for a probe: "gain", "offset" or "delay").
     terms : (driver expression, shape) pairs: the law is tested for a dependence on each
         driver it does not have (shape "abs": on |u|, "square": on u^2, "centred": on u
-        about its mean, "cos" and "sin": of an angle u, once per turn). Empty for a probe:
+        about its mean, "cos" and "sin": of an angle u, once per turn, "sign": on u's
+        direction). Empty for a probe:
         a sensor's law is bent on its reading, by shapes its kind fixes (``law``).
     companion : (place, value) of a second action the effect's physics could carry and the
         catalog's law leaves out, tried with a coefficient of null 0 beside the shapes: an
@@ -243,7 +244,7 @@ def _converter_effects(net: Netlist, orders: Mapping[str, list[int]]) -> list[Ca
         out.append(Candidate("brush-drop", t, {p: (0.0, 0.0, 50.0)}, {"i_eps": BRUSH_EPS},
                              f"a brush contact drop Vb*sign(i) in series with {t}",
                              lambda r, t=t, v=v: insert_series(r, t, f"BD_{t}", v),
-                             steps={p: 1e-2}, law=_current_law(t, v)))
+                             steps={p: 1e-2}, law=_drop_law(t, v)))
         if net.raw is not None and f"BD_{t}" in net.raw.patch_parts:
             out.append(_brush_transition(t, p))
         for k in orders.get(shaft, []):
@@ -277,7 +278,7 @@ def _brush_transition(t: str, vb: str) -> Candidate:
                      f"the width eps of the brush drop's transition through zero current in "
                      f"{t}: Vb tanh(i/eps)",
                      lambda r, t=t, law=law: _set_expr(r, f"BD_{t}", law),
-                     steps={e: 0.1 * BRUSH_EPS}, law=_current_law(t, law))
+                     steps={e: 0.1 * BRUSH_EPS}, law=_drop_law(t, law))
 
 
 def _set_expr(raw: RawNetlist, name: str, expr: str) -> None:
@@ -384,6 +385,14 @@ def _current_law(component: str, value: str) -> Law:
     lacks (a contact's voltage growing slower than a resistance's)."""
     i = f"{component}.i"
     return Law(("series", component), value, ((i, "abs"), (i, "square")))
+
+
+def _drop_law(component: str, value: str) -> Law:
+    """A brush contact's drop: tested as ``_current_law`` is, and for a dependence on the
+    current's direction -- a contact drops as much whichever way the current flows, while
+    brushes set at an angle for one direction (or a diode in the loop) do not."""
+    i = f"{component}.i"
+    return Law(("series", component), value, ((i, "abs"), (i, "square"), (i, "sign")))
 
 
 def _stribeck(node: str) -> list[Candidate]:

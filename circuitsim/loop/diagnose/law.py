@@ -104,6 +104,9 @@ LAW_RANGE = 0.1
 #: phase by (w tau)^3/12 (checked on sines: 0.079 with the reading's numerical derivatives)
 PURE_DELAY_BENDS = (0.0, 1.0 / 12.0)
 LAW_PREFIX = "law_bend"
+#: a ``sign`` shape's tanh reaches 0.76 at this share of its driver's largest size: sharp
+#: beside the drivers' ranges, smooth enough to integrate through a reversal
+SIGN_WIDTH = 1e-3
 #: the coefficient of a law's companion action (``effects.Law.companion``), null 0: 1 is the
 #: whole of it (an EMF harmonic's torque: the power its EMF takes, returned on the shaft)
 COMPANION = f"{LAW_PREFIX}_t"
@@ -230,6 +233,8 @@ class Bend:
 def _scale_of(kind: str, u: np.ndarray) -> tuple[float, float]:
     """(centre, scale) of a driver's shape over the record [its unit]."""
     u = np.asarray(u, float)
+    if kind == "sign":  # its direction: a tanh as sharp as a thousandth of its range
+        return 0.0, max(SIGN_WIDTH * float(np.max(np.abs(u))), 1e-300)
     if kind == "centred":
         lo, hi = float(np.min(u)), float(np.max(u))
         return 0.5 * (lo + hi), max(0.5 * (hi - lo), 1e-300)
@@ -244,6 +249,8 @@ def _shape(kind: str, u: str, c: str, s: str) -> str:
         return f"({u}/{s})^2"
     if kind in ("cos", "sin"):  # of an angle, once per turn: no scale
         return f"{kind}({u})"
+    if kind == "sign":
+        return f"tanh({u}/{s})"
     return f"({u} - {c})/{s}"
 
 
@@ -255,12 +262,14 @@ def _shape_values(kind: str, u: np.ndarray, c: float, s: float) -> np.ndarray:
         return np.square(u / s)
     if kind in ("cos", "sin"):
         return np.cos(u) if kind == "cos" else np.sin(u)
+    if kind == "sign":
+        return np.tanh(u / s)
     return (u - c) / s
 
 
 def _word(kind: str, u: str) -> str:
     return {"abs": f"|{u}|", "square": f"{u}^2", "cos": f"cos({u})",
-            "sin": f"sin({u})"}.get(kind, f"{u} about its mean")
+            "sin": f"sin({u})", "sign": f"the sign of {u}"}.get(kind, f"{u} about its mean")
 
 
 def _values(sim: Any, expr: str, t: np.ndarray) -> np.ndarray | None:
