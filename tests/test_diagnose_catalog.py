@@ -89,17 +89,30 @@ def make_record(motor: str, patches, seed: int = 0, shaped: bool = False) -> Rec
         cand = _candidate(build(raw), effect, target, order, probes, shaped)
         raw = cand.apply(raw)
         values.update(dict(zip(cand.free, vals, strict=True)))
+    return Record(*_sampled(m, raw, seed, values), f"{motor} + {patches}")
+
+
+def _fine_run(m: dict, raw, values: dict | None = None):
+    """(t, fine, res): the record's times at ``m``'s rate, a grid five times finer, and the
+    run of ``raw`` on it at tight tolerances."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         model = cs.compile(build(raw))
     t = np.arange(round(m["stop"] * m["rate"]) + 1) / m["rate"]
     fine = np.linspace(0.0, m["stop"], 5 * (t.size - 1) + 1)
-    res = model.simulate(stop=m["stop"], t_eval=fine, params=values, rtol=1e-10, atol=1e-12)
+    res = model.simulate(stop=m["stop"], t_eval=fine, params=values or {}, rtol=1e-10,
+                         atol=1e-12)
     assert res.success, res.message
+    return t, fine, res
+
+
+def _sampled(m: dict, raw, seed: int, values: dict | None = None):
+    """(t, columns): ``raw`` run finely, resampled at ``m``'s rate, with its white noise and
+    ADC steps."""
+    t, fine, res = _fine_run(m, raw, values)
     rng = np.random.default_rng(seed)
-    cols = {p: np.round((np.interp(t, fine, res[p]) + rng.normal(0.0, s, t.size)) /
-                        m["lsb"][p]) * m["lsb"][p] for p, s in m["noise"].items()}
-    return Record(t, cols, f"{motor} + {patches}")
+    return t, {p: np.round((np.interp(t, fine, res[p]) + rng.normal(0.0, s, t.size)) /
+                           m["lsb"][p]) * m["lsb"][p] for p, s in m["noise"].items()}
 
 
 # effect, target, order, true values, relative tolerance on the parameters
@@ -297,13 +310,7 @@ def test_a_supply_inductance_is_a_correction_of_the_inductance_it_is_in_series_w
     node, src["p"] = src["p"], "supply"
     raw.comps.append(({"name": "Lsupply", "type": "L", "p": "supply", "n": node,
                        "L": 0.25e-3}, raw.comps[0][1], raw.path))
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        model = cs.compile(build(raw))
-    t = np.arange(round(m["stop"] * m["rate"]) + 1) / m["rate"]
-    fine = np.linspace(0.0, m["stop"], 5 * (t.size - 1) + 1)
-    res = model.simulate(stop=m["stop"], t_eval=fine, rtol=1e-10, atol=1e-12)
-    assert res.success, res.message
+    t, fine, res = _fine_run(m, raw)
     rng = np.random.default_rng(17)
     rec = Record(t, {p: np.interp(t, fine, res[p]) + rng.normal(0.0, s, t.size)
                      for p, s in m["noise"].items()}, "kim + supply inductance")
@@ -393,17 +400,17 @@ def _outside_record(motor: str, torques: dict[str, str], seed: int,
                            "expr": expr}, SourceLoc("<test>"), raw.path))
     for component, expr in (series or {}).items():
         effects.insert_series(raw, component, f"OUT_{component}", expr)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        model = cs.compile(build(raw))
-    t = np.arange(round(m["stop"] * m["rate"]) + 1) / m["rate"]
-    fine = np.linspace(0.0, m["stop"], 5 * (t.size - 1) + 1)
-    res = model.simulate(stop=m["stop"], t_eval=fine, rtol=1e-10, atol=1e-12)
-    assert res.success, res.message
-    rng = np.random.default_rng(seed)
-    cols = {p: np.round((np.interp(t, fine, res[p]) + rng.normal(0.0, s, t.size)) /
-                        m["lsb"][p]) * m["lsb"][p] for p, s in m["noise"].items()}
-    return Record(t, cols, f"{motor} + {torques}")
+    return Record(*_sampled(m, raw, seed), f"{motor} + {torques}")
+
+
+def _a_stand_in(motor: str, rec: Record, reason: str):
+    """Diagnose ``rec`` on ``motor``'s netlist: nothing named, structure described, and the
+    stand-in's ``reason`` (its effect and why) in the report; the diagnosis."""
+    d = diagnose(cs.load(MOTORS[motor]["netlist"]), rec)
+    assert not d.effects, d.summary()
+    assert d.remaining["structure"], d.summary()
+    assert reason in d.remaining.get("stand_ins", ""), d.summary()
+    return d
 
 
 def test_a_play_in_the_barrier_drive_through_the_loop():
@@ -425,11 +432,7 @@ def test_a_drive_half_as_stiff_one_way_is_not_named_a_play():
     twist = "(hub.phi - boom.phi)"
     give = f"0.5*Kc*({twist} + abs({twist}))/2"
     rec = _outside_record("ae", {"hub": give, "boom": f"-({give})"}, seed=23)
-    d = diagnose(cs.load(MOTORS["ae"]["netlist"]), rec)
-    assert not d.effects, d.summary()
-    assert d.remaining["structure"], d.summary()
-    assert "backlash on K (its law does not hold" in d.remaining.get("stand_ins", ""), \
-        d.summary()
+    _a_stand_in("ae", rec, "backlash on K (its law does not hold")
 
 
 def test_a_torque_of_the_booms_angle_that_is_no_weight_is_not_named_an_unbalance():
@@ -441,11 +444,7 @@ def test_a_torque_of_the_booms_angle_that_is_no_weight_is_not_named_an_unbalance
     and nothing is named. (A true unbalance on this boom is named: the next test.)"""
     wind = "-20*sin(boom.phi/1[rad])*abs(sin(boom.phi/1[rad]))"
     rec = _outside_record("ae-slow", {"boom": wind}, seed=23)
-    d = diagnose(cs.load(MOTORS["ae-slow"]["netlist"]), rec)
-    assert not d.effects, d.summary()
-    assert d.remaining["structure"], d.summary()
-    assert "unbalance on boom (its law does not hold" in d.remaining.get("stand_ins", ""), \
-        d.summary()
+    _a_stand_in("ae-slow", rec, "unbalance on boom (its law does not hold")
 
 
 def test_an_unbalance_of_the_boom_through_the_loop():
@@ -468,11 +467,7 @@ def test_brushes_that_drop_more_one_way_are_not_named_a_brush_drop():
     sign = "tanh(M.i/1[mA])"
     rec = _outside_record("ae", {}, seed=29,
                           series={"M": f"0.75[V]*{sign} - 0.45[V]*{sign}^2"})
-    d = diagnose(cs.load(MOTORS["ae"]["netlist"]), rec)
-    assert not d.effects, d.summary()
-    assert d.remaining["structure"], d.summary()
-    assert "brush-drop on M (its law does not hold" in d.remaining.get("stand_ins", ""), \
-        d.summary()
+    d = _a_stand_in("ae", rec, "brush-drop on M (its law does not hold")
     assert "the sign of M.i" in d.remaining["stand_ins"], d.summary()
 
 

@@ -5,6 +5,8 @@ takes 10-20 s, and a diagnosis 50-900 runs (the diagnosis says so when it starts
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 import pytest
 
@@ -23,7 +25,11 @@ CLEAN = ["examples/dc_motor.yaml", "examples/rlc.yaml", "examples/two_mass_motor
 def _null_record(net, seed: int = 5) -> Record:
     """The netlist's own run on its analysis grid (at most 20 000 rows), every probe that
     varies with white noise of 2 % of its spread."""
-    model = cs.compile(net)
+    with warnings.catch_warnings():
+        # the Kim netlists declare the paper's k_t != k_e on purpose (REFERENCE.md), which
+        # compile warns of; the warning is tested where it is raised
+        warnings.simplefilter("ignore", cs.CircuitWarning)
+        model = cs.compile(net)
     run = model.simulate()
     assert run.success, run.message
     k = max(1, -(-run.t.size // 20000))
