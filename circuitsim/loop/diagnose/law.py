@@ -12,8 +12,8 @@ the record still holds.
 The test lets the law bend: the effect's own contribution is multiplied by (1 + a1 psi1(u) +
 a2 psi2(u) ...), the psi low-order shapes of the quantities the law reads or might read
 (``effects.Law.terms``: |i|, i^2, |w|, w^2, the angle about its mean or once per turn, the
-time, a coupling's twist about its mean and its size), each a new parameter with null 0, so that the patched circuit is the accepted one
-exactly at a = 0. Their sensitivities come from one batched run of that circuit (inside the
+time, a coupling's twist about its mean and its size, the current's direction), each a new
+parameter with null 0, so that the patched circuit is the accepted one exactly at a = 0. Their sensitivities come from one batched run of that circuit (inside the
 dynamics: a torque that depends on the speed feeds back through the speed), with the
 effect's own. A sensor's law is bent on its reading alone: a gain's reading by its size, an
 offset by time and the reading's size, a delay's reading by its second and third
@@ -233,7 +233,7 @@ class Bend:
 def _scale_of(kind: str, u: np.ndarray) -> tuple[float, float]:
     """(centre, scale) of a driver's shape over the record [its unit]."""
     u = np.asarray(u, float)
-    if kind == "sign":  # its direction: a tanh as sharp as a thousandth of its range
+    if kind == "sign":  # its direction: a tanh as sharp as a thousandth of its largest size
         return 0.0, max(SIGN_WIDTH * float(np.max(np.abs(u))), 1e-300)
     if kind == "centred":
         lo, hi = float(np.min(u)), float(np.max(u))
