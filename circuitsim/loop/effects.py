@@ -39,8 +39,8 @@ class Law:
     terms : (driver expression, shape) pairs: the law is tested for a dependence on each
         driver it does not have (shape "abs": on |u|, "square": on u^2, "centred": on u
         about its mean, "cos" and "sin": of an angle u, once per turn, "sign": on u's
-        direction). Empty for a probe:
-        a sensor's law is bent on its reading, by shapes its kind fixes (``law``).
+        direction). Empty for a probe: a sensor's law is bent on its reading, by shapes
+        its kind fixes (``law``).
     companion : (place, value) of a second action the effect's physics could carry and the
         catalog's law leaves out, tried with a coefficient of null 0 beside the shapes: an
         EMF harmonic's torque (a motor constant that varies with the angle, as an eccentric

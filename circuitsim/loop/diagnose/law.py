@@ -9,18 +9,19 @@ law is fitted, a residual that is the *difference between the two laws*: small b
 effect (the two curves are close over the record's range), but systematic, and most of what
 the record still holds.
 
-The test lets the law bend: the effect's own contribution is multiplied by (1 + a1 psi1(u) +
-a2 psi2(u) ...), the psi low-order shapes of the quantities the law reads or might read
+The test lets the law bend: the effect's own contribution is multiplied by (1 + a1 psi1(u)
++ a2 psi2(u) ...), the psi low-order shapes of the quantities the law reads or might read
 (``effects.Law.terms``: |i|, i^2, |w|, w^2, the angle about its mean or once per turn, the
 time, a coupling's twist about its mean and its size, the current's direction), each a new
-parameter with null 0, so that the patched circuit is the accepted one exactly at a = 0. Their sensitivities come from one batched run of that circuit (inside the
-dynamics: a torque that depends on the speed feeds back through the speed), with the
-effect's own. A sensor's law is bent on its reading alone: a gain's reading by its size, an
-offset by time and the reading's size, a delay's reading by its second and third
-derivatives, where a first-order lag or a tracking loop differ from a delay. A law may also
-name a companion action its physics could carry and the catalog leaves out
-(``effects.Law.companion``: an EMF harmonic's torque, which a motor constant varying with
-the angle has), tried beside the shapes with a coefficient of null 0 (``COMPANION``).
+parameter with null 0, so that the patched circuit is the accepted one exactly at a = 0.
+Their sensitivities come from one batched run of that circuit (inside the dynamics: a
+torque that depends on the speed feeds back through the speed), with the effect's own. A
+sensor's law is bent on its reading alone: a gain's reading by its size, an offset by time
+and the reading's size, a delay's reading by its second and third derivatives, where a
+first-order lag or a tracking loop differ from a delay. A law may also name a companion
+action its physics could carry and the catalog leaves out (``effects.Law.companion``: an
+EMF harmonic's torque, which a motor constant varying with the angle has), tried beside
+the shapes with a coefficient of null 0 (``COMPANION``).
 
 A law that passes the BIC margin is a stand-in when the bend takes a fair share of what is
 left (``LAW_SHARE``) or when it asks for a fair part of the law itself (``LAW_RANGE``): a
