@@ -1742,3 +1742,48 @@ def test_a_flanges_whole_load_scaled_by_one_factor_is_one_cause_too(tmp_path):
     assert [(v.node, v.term) for _, v in found] == [
         ("cart", "mass Mc"), ("cart", "viscous drag"), ("cart", "Coulomb friction")]
     assert all(abs(v.common - 0.3003) < 1e-3 for _, v in found)
+
+
+def test_a_generalised_correction_moves_back_along_its_secant_by_least_squares():
+    """A saturation screened after an inductance correction: at each grid value the
+    correction moves the fraction of the way back to its null that fits best, within [0, 2]
+    (``screen._moved_back``)."""
+    from circuitsim.loop.diagnose.screen import _moved_back
+
+    d = np.array([1.0, 2.0, 3.0])
+    r = np.array([2.0, -1.0, 0.0])  # orthogonal to d: what no move explains
+    trial, left = _moved_back({"dL": -0.2, "Ipar": 3.0}, 0.7 * d + 0.1 * r, {"dL": 0.0}, d)
+    assert trial["dL"] == pytest.approx(-0.2 + 0.7 * 0.2)
+    assert trial["Ipar"] == 3.0
+    np.testing.assert_allclose(left, 0.1 * r, atol=1e-12)
+    trial, left = _moved_back({"dL": -0.2}, 5.0 * d, {"dL": 0.0}, d)
+    assert trial["dL"] == pytest.approx(0.2)  # two secants at most
+    np.testing.assert_allclose(left, 3.0 * d)
+    same = {"dL": -0.2}
+    assert _moved_back(same, d, {}, None) == (same, d)
+
+
+def test_a_law_leaves_out_the_bends_a_driver_that_never_reverses_makes_meaningless():
+    """A ``sign`` shape of a current that never reverses is a constant (the drop's own
+    column), and ``abs`` of a twist that never reverses is the twist, which the ``centred``
+    term spans with a constant (a rescale of the declared stiffness): both are left out. A
+    speed's |w| beside no centred term stays (a friction's viscous bend), and a reversing
+    driver keeps every term."""
+    from circuitsim.loop.diagnose.law import _reversing
+
+    t = np.linspace(0.0, 1.0, 201)
+    one_way = 1.0 + np.sin(2 * np.pi * t) ** 2
+    both_ways = np.sin(2 * np.pi * t)
+    drop = effects.Law(("series", "M"), "v", (("M.i", "abs"), ("M.i", "square"),
+                                               ("M.i", "sign")))
+    assert _reversing(drop, {"M.i": one_way}).terms == (("M.i", "abs"), ("M.i", "square"))
+    assert _reversing(drop, {"M.i": both_ways}) is drop
+    play = effects.Law(("coupling", "K"), "K.tau", (("K.phi_rel", "centred"),
+                                                     ("K.phi_rel", "abs")))
+    assert _reversing(play, {"K.phi_rel": -one_way}).terms == (("K.phi_rel", "centred"),)
+    assert _reversing(play, {"K.phi_rel": both_ways}) is play
+    speed = effects.Law(("torque", "rotor"), "c", (("rotor.w", "abs"), ("rotor.w", "square")))
+    assert _reversing(speed, {"rotor.w": one_way}) is speed
+    # a current that dips the other way by less than REVERSAL of its peak does not reverse
+    dip = np.where(t > 0.9, -0.005, one_way)
+    assert [k for _, k in _reversing(drop, {"M.i": dip}).terms] == ["abs", "square"]

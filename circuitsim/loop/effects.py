@@ -85,6 +85,10 @@ class Candidate:
                                                                 compare=False)
     # where and how it acts, for the test of its law over the record's operating range
     law: Law | None = field(default=None, repr=False, compare=False)
+    # the effect of a correction on the same target this one contains as a special case
+    # (a saturation whose top is free is also a constant inductance factor): screened after
+    # that correction, it is screened with the correction free to move back
+    generalises: str = ""
 
     @property
     def key(self) -> str:
@@ -480,7 +484,7 @@ def _component_laws(net: Netlist, duration: float | None = None) -> list[Candida
                 "inductor-saturation", c.name, {p: (1e6, 1e-6, 1e6), q: (0.3, 1e-3, 1.0)}, {},
                 f"saturation of {c.name}: inductance falling with current",
                 lambda r, n=c.name, p=p, q=q: _saturate(r, n, p, q),
-                grid=(3.0, 1.0, 0.3, 0.1, 0.03, 0.01)))
+                grid=(3.0, 1.0, 0.3, 0.1, 0.03, 0.01), generalises="inductance"))
         if c.type in ("R", "resistor"):
             p = _pname("resistance-drift", c.name, "alpha")
             # a straight line is the start of a warm-up: it is as fast as one can be, and

@@ -39,6 +39,7 @@ left, if at all.
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -108,6 +109,13 @@ LAW_PREFIX = "law_bend"
 #: a ``sign`` shape's tanh reaches 0.76 at this share of its driver's largest size: sharp
 #: beside the drivers' ranges, smooth enough to integrate through a reversal
 SIGN_WIDTH = 1e-3
+#: a driver reverses when its smaller side reaches this share of its larger: short of it, a
+#: ``sign`` shape is a constant (the effect's own contribution rescaled, its own column) and
+#: ``abs`` is the driver itself, which a ``centred`` term of the same driver spans with a
+#: constant (a play's coupling whose twist never reverses: a rescale of its declared
+#: stiffness). Those terms are left out of the law's test there: a bend that copies the
+#: effect's own column has no meaning (the DC motor's step: cosine 0.999999996).
+REVERSAL = 1e-2
 #: the coefficient of a law's companion action (``effects.Law.companion``), null 0: 1 is the
 #: whole of it (an EMF harmonic's torque: the power its EMF takes, returned on the shaft)
 COMPANION = f"{LAW_PREFIX}_t"
@@ -347,12 +355,18 @@ def bend_of(setup: Setup, state: ModelState, candidate: Any,
         return None
     if law.place[0] == "probe":
         return _probe_bend(setup, state, law, [float(state.params[n]) for n in candidate.free])
+    found = {u: _values(state.fit.sim, u, setup.record.t) for u, _ in law.terms}
+    missing = next((u for u, v in found.items() if v is None), None)
+    if missing is not None:
+        setup.log(f"  law of {candidate.key} not tested: the run does not hold {missing}")
+        return None
+    law = _reversing(law, found)
+    if not law.terms and law.companion is None:
+        setup.log(f"  law of {candidate.key} not tested: its drivers never reverse")
+        return None
     names, scales, shapes, part = _names(law), {}, [], {}
     for (_, c, s), (u, kind) in zip(names, law.terms, strict=True):
-        values = _values(state.fit.sim, u, setup.record.t)
-        if values is None:
-            setup.log(f"  law of {candidate.key} not tested: the run does not hold {u}")
-            return None
+        values = found[u]
         travel = float(np.ptp(values)) / (2.0 * np.pi)
         if kind in ("cos", "sin") and travel < 1.0:
             part[u] = travel
@@ -379,6 +393,19 @@ def bend_of(setup: Setup, state: ModelState, candidate: Any,
         COMPANION_WORD + law.companion[0][1] for _ in companion)
     return Bend(cols[:len(own_steps)], cols[len(own_steps):], words, True, tuple(shapes),
                 "order" not in candidate.fixed, part_turns=tuple(part.items()))
+
+
+def _reversing(law: Any, found: Mapping[str, np.ndarray]) -> Any:
+    """``law`` without the terms a driver that never reverses makes meaningless
+    (``REVERSAL``): its ``sign`` shapes, and its ``abs`` shapes beside a ``centred`` one."""
+    def reverses(u: np.ndarray) -> bool:
+        return min(float(np.max(u)), -float(np.min(u))) > REVERSAL * float(np.max(np.abs(u)))
+
+    centred = {u for u, kind in law.terms if kind == "centred"}
+    kept = tuple((u, kind) for u, kind in law.terms
+                 if reverses(np.asarray(found[u], float)) or not (
+                     kind == "sign" or (kind == "abs" and u in centred)))
+    return law if kept == tuple(law.terms) else dataclasses.replace(law, terms=kept)
 
 
 def _probe_bend(setup: Setup, state: ModelState, law: Any, values: Sequence[float]

@@ -123,23 +123,23 @@ def projections(setup: Setup, model) -> tuple[Projector, Projector, bool]:
     return slow, wave, angle_locked(model)
 
 
-def screen(setup: Setup, state: ModelState, proposal: Proposal, project: Projector,
-           noise: float) -> Screen | None:
+def screen(setup: Setup, state: ModelState, proposal: Proposal,
+           project: Projector | tuple[Projector, ...], noise: float,
+           margin: float = 10.0) -> Screen | None:
     """Score test of one candidate (see the module docstring); None when it cannot run or
-    acts on nothing measured (its sensitivity stays within the solver's own noise)."""
+    acts on nothing measured (its sensitivity stays within the solver's own noise).
+    ``project``: a projection, or alternatives in order of preference -- a grid's runs are
+    seen through each, and the first whose promise pays ``margin`` is kept (as in
+    ``screen_many``); the others use the first."""
     cand = proposal.candidate
+    views = _alternatives(project)
+    project = views[0]
     base = {**state.params, **{k: v[0] for k, v in cand.free.items()}}
     if cand.effect in SENSOR_LAWS:  # no run: its model is compiled if it is refitted
         return _sensor(setup, state, proposal, base, project)
     model = compile_raw(cand.apply(state.raw))
     if cand.grid:
-        y0 = simulate(setup, model, base)
-        if y0 is None:
-            return None
-        e0 = project(setup.record) - project(y0)
-        norm0 = float(e0 @ e0)
-        return _grid(setup, proposal, model, base, y0, e0, project, norm0) \
-            if norm0 > 0.0 else None
+        return _grid(setup, proposal, model, base, views, _undone(state, cand), margin)
     # the base and one step of each parameter in one batched run (one step sequence for all:
     # the differences carry no integration noise of their own)
     steps = {n: cand.steps.get(n, 1e-3) for n in sized(cand)}
@@ -181,8 +181,8 @@ def screen_many(setup: Setup, state: ModelState, proposals: list[Proposal],
     out: list[Screen | None] = []
     for prop in rest:
         setup.log(f"screening {prop.candidate.key}")
-        fn = _alternatives(projector(prop))[0]
-        out.append(screen(setup, state, prop, fn, noise(fn)))
+        fns = _alternatives(projector(prop))
+        out.append(screen(setup, state, prop, fns, noise(fns[0]), margin))
     accepted = _accepted_steps(state)
     for prop in joint:
         setup.log(f"screening {prop.candidate.key}")
@@ -419,26 +419,68 @@ def _sensitivity(setup: Setup, model, base: Mapping[str, float], name: str, h: f
     return col if size >= 10 * noise else None
 
 
-def _grid(setup: Setup, proposal: Proposal, model, base: Mapping[str, float], y0,
-          e0: np.ndarray, project: Projector, norm0: float) -> Screen | None:
+def _grid(setup: Setup, proposal: Proposal, model, base: Mapping[str, float],
+          views: tuple[Projector, ...], undo: Mapping[str, float], margin: float
+          ) -> Screen | None:
     """Effects invisible to a linearisation at null: a few values of the first parameter,
-    scaled by the target's current where it has one; the others keep their start values."""
+    scaled by the target's current where it has one; the others keep their start values.
+    Each of ``views`` scores the same runs; the first whose promise pays ``margin`` is kept
+    (a saturation acts in the current's transients, which slow features average away).
+    ``undo``: the parameters of an accepted correction the candidate generalises, with their
+    null values; at each value they move along the secant towards null by least squares."""
     cand = proposal.candidate
     first = next(iter(cand.free))
+    y0 = simulate(setup, model, base)
+    if y0 is None:
+        return None
     key = f"{cand.target}.i"
     scale = max(float(np.max(np.abs(y0[key]))), 1e-9) if key in y0.names else 1.0
-    best: Screen | None = None
     trials = [{**base, first: _inside(cand.free[first], g * scale)} for g in cand.grid]
     # far-apart values: each member keeps its own error bound (not ``nearby``)
-    for trial, y in zip(trials, simulate_many(setup, model, trials, nearby=False),
-                        strict=True):
-        if y is None:
+    runs = simulate_many(setup, model, [*trials, *({**t, **undo} for t in trials if undo)],
+                         nearby=False)
+    backs = runs[len(trials):] or [None] * len(trials)
+    out = []
+    for project in views:
+        e0 = project(setup.record) - project(y0)
+        norm0 = float(e0 @ e0)
+        if norm0 <= 0.0:
             continue
-        e = e0 - (project(y) - project(y0))
-        share = (norm0 - float(e @ e)) / norm0
-        if best is None or share > best.share:
-            best = Screen(proposal, share, {n: trial[n] for n in cand.free}, model, e0.size)
-    return best
+        best: Screen | None = None
+        for trial, y, back in zip(trials, runs[:len(trials)], backs, strict=True):
+            if y is None:
+                continue
+            e = e0 - (project(y) - project(y0))
+            trial, e = _moved_back(trial, e, undo, None if back is None else
+                                   project(back) - project(y))
+            share = (norm0 - float(e @ e)) / norm0
+            if best is None or share > best.share:
+                start = {n: trial[n] for n in cand.free} | {n: trial[n] for n in undo}
+                best = Screen(proposal, share, start, model, e0.size)
+        if best is not None:
+            out.append(best)
+    return _preferred(out, margin)
+
+
+def _moved_back(trial: dict[str, float], e: np.ndarray, undo: Mapping[str, float],
+                d: np.ndarray | None) -> tuple[dict[str, float], np.ndarray]:
+    """The trial moved a fraction ``a`` of the way from its corrected values to ``undo``'s
+    (``d``: the projected change all the way), ``a`` in [0, 2] fitting the residual ``e``
+    best, and the residual left."""
+    if d is None or not undo or float(d @ d) <= 1e-12 * max(float(e @ e), 1e-300):
+        return trial, e
+    a = min(max(float(e @ d) / float(d @ d), 0.0), 2.0)
+    return ({**trial, **{n: trial[n] + a * (v - trial[n]) for n, v in undo.items()}},
+            e - a * d)
+
+
+def _undone(state: ModelState, cand) -> dict[str, float]:
+    """The free parameters of the accepted corrections ``cand`` generalises (the same
+    target's), with their null values."""
+    return {n: spec[0] for c in state.chosen
+            if c.correction and cand.generalises == c.candidate.effect
+            and c.candidate.target == cand.target
+            for n, spec in c.candidate.free.items() if n in state.params}
 
 
 # a sensor law's sensitivity to its parameter at null, from the probe's own series x on
