@@ -402,9 +402,10 @@ def _reversing(law: Any, found: Mapping[str, np.ndarray]) -> Any:
         return min(float(np.max(u)), -float(np.min(u))) > REVERSAL * float(np.max(np.abs(u)))
 
     centred = {u for u, kind in law.terms if kind == "centred"}
+    # only a direction, and a size beside its centred driver, need the driver to reverse
     kept = tuple((u, kind) for u, kind in law.terms
-                 if reverses(np.asarray(found[u], float)) or not (
-                     kind == "sign" or (kind == "abs" and u in centred)))
+                 if not (kind == "sign" or (kind == "abs" and u in centred))
+                 or reverses(np.asarray(found[u], float)))
     return law if kept == tuple(law.terms) else dataclasses.replace(law, terms=kept)
 
 
