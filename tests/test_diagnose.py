@@ -1787,3 +1787,31 @@ def test_a_law_leaves_out_the_bends_a_driver_that_never_reverses_makes_meaningle
     # a current that dips the other way by less than REVERSAL of its peak does not reverse
     dip = np.where(t > 0.9, -0.005, one_way)
     assert [k for _, k in _reversing(drop, {"M.i": dip}).terms] == ["abs", "square"]
+
+
+def test_only_a_straight_drift_bent_most_by_time_squared_asks_for_its_warm_up():
+    """A straight drift whose law is bent most by t^2 (a warm-up's curvature) is refitted
+    as its shaped form at the end; one bent most by |i| (a contact, not a temperature), a
+    warm-up itself, a correction and a law that holds are not."""
+    from circuitsim.loop.diagnose.context import Choice
+    from circuitsim.loop.diagnose.engine import _asks_for_shape
+    from circuitsim.loop.diagnose.law import LawTest
+    from circuitsim.loop.diagnose.stability import Stability
+
+    net = cs.load(NETLISTS / "examples" / "dc_motor.yaml")
+    found = [c for c in effects.candidates(net, {}, ("i", "speed"), duration=1.0)
+             if c.effect == "resistance-drift"]
+    line = next(c for c in found if not c.shape)
+    warm = next(c for c in found if c.shape)
+    terms = (f"|{line.target}.i|", "t^2")
+
+    def verdict(bends, delta_bic=-500.0):
+        law = LawTest(delta_bic, 100.0, terms, removed=0.2, bends=bends, spread=0.4)
+        return Stability(0.0, 0.0, 100.0, law=law)
+
+    assert _asks_for_shape(Choice(line), verdict((0.02, -0.55)))
+    assert not _asks_for_shape(Choice(line), verdict((0.6, -0.1)))
+    assert not _asks_for_shape(Choice(line), verdict((0.02, -0.55), delta_bic=5.0))
+    assert not _asks_for_shape(Choice(warm), verdict((0.02, -0.55)))
+    assert not _asks_for_shape(Choice(line, True), verdict((0.02, -0.55)))
+    assert not _asks_for_shape(Choice(line), Stability(-50.0, 60.0, 100.0))

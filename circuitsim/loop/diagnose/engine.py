@@ -981,12 +981,7 @@ def _trades(setup: Setup, state0: ModelState, state: ModelState, log: dict[str, 
     against each other -- a series resistance taken for belt creep fits the current and the
     pulley's speed better and the motor's speed worse: they stand in for a cause outside the
     catalog, and are kept out of the netlist with the reason (corrections stay)."""
-    new = [c for c in state.chosen if not c.correction]
-    if not new:
-        return state
-    k = sum(len(c.candidate.free) for c in new)
-    rises = probe_rises(setup, state0, state)
-    worse = {p: r for p, r in rises.items() if r > TRADE_Z**2 + k}
+    worse = _traded(setup, state0, state)
     if not worse:
         return state
     probes = ", ".join(f"{p} (by {r:.0f} noise variances)" for p, r in worse.items())
@@ -994,6 +989,16 @@ def _trades(setup: Setup, state0: ModelState, state: ModelState, log: dict[str, 
         f"a stand-in that trades the probes: with {names} the record is fitted better as a "
         f"whole but {probes} worse than by the declared model, which a cause present in the "
         f"data does not do; not accepted"))
+
+
+def _traded(setup: Setup, state0: ModelState, state: ModelState) -> dict[str, float]:
+    """The probes ``state``'s new effects fit worse than the declared model ``state0`` beyond
+    a ``TRADE_Z``-sigma chance rise, with their rises [noise variances] (``_trades``)."""
+    new = [c for c in state.chosen if not c.correction]
+    if not new:
+        return {}
+    k = sum(len(c.candidate.free) for c in new)
+    return {p: r for p, r in probe_rises(setup, state0, state).items() if r > TRADE_Z**2 + k}
 
 
 def _kept_out(setup: Setup, state0: ModelState, state: ModelState, log: dict[str, Any],
@@ -1073,9 +1078,10 @@ def _unstable(setup: Setup, state0: ModelState, state: ModelState, log: dict[str
         if reduced is None:
             setup.log("the model without the unstable effect could not be refitted; it stays")
             break
-        shaped = _shaped(setup, state, reduced, unstable, log)
+        shaped = _shaped(setup, state0, state, reduced, unstable, log)
         if shaped is not None:
-            state = shaped
+            # the model revised is the one later stand-ins are measured against
+            state, whole = shaped, (shaped if not found else whole)
             continue
         found += unstable
         for c in state.chosen:  # a refinement goes with the effect it refines
@@ -1092,65 +1098,101 @@ def _unstable(setup: Setup, state0: ModelState, state: ModelState, log: dict[str
         "the whole of it, so this fits a cause outside the catalog only approximately")
 
 
-def _shaped(setup: Setup, state: ModelState, reduced: ModelState,
+#: effects with a plain form and shaped forms that contain it: effect -> the ends of the
+#: plain form's rate [1/s] and of the shaped form's size [-] (a straight drift of a
+#: resistance is the start of a warm-up, whose rise over its time constant is the rate)
+SHAPED_FORMS = {"resistance-drift": ("alpha", "rise")}
+#: the word of the bend that asks for the shape: a warm-up's curvature is in time squared
+SHAPED_BEND = "t^2"
+
+
+def _shaped(setup: Setup, state0: ModelState, state: ModelState, reduced: ModelState,
             unstable: list[tuple[Choice, Any]], log: dict[str, Any]) -> ModelState | None:
-    """An unstable effect that is the simplest of its kind (a straight drift of a
-    resistance) replaced by the kind's shaped form (a warm-up settling with a time constant:
-    a straight line is its start), each of the shape's starts refitted in its place with
-    everything else; the best that passes against ``reduced`` (the model without it) and
-    fits better than the straight form, or None. The straight form's law bent by the
-    square of time is a warm-up's curvature: fresh32's aj08, a winding cooling with tau 4 s
-    beside an unbalance, tried its warm-up in the first round, where without the unbalance
-    it ran to its bound, and was then left with the straight line's stand-in verdict."""
-    tried = log.setdefault("shaped", set())
-    for choice, _ in unstable:
+    """An unstable effect's plain form (``SHAPED_FORMS``) whose law is bent most by
+    ``SHAPED_BEND`` replaced by its shaped form, each of the shape's starts refitted in its
+    place with everything else; the best, or None. It must pass ``judge`` against the model
+    without the plain form, fit better than it by the BIC margin, end with its shape inside
+    the span of its starts (a warm-up is told from a line only when tau is under the
+    record's length), and trade no probe (``_traded``). fresh32's aj08: a winding cooling
+    with tau 4 s beside an unbalance tried its warm-up in the first round, where without
+    the unbalance it ran to its bound, and was left with the straight line's stand-in
+    verdict, bent by t^2. ``reduced``: the model without all of ``unstable``."""
+    # once per effect and target: a revised model is tested again and must not loop back
+    done = log.setdefault("shaped", set())
+    for choice, verdict in unstable:
         cand = choice.candidate
-        if cand.shape or choice.correction or cand.kind in tried:
+        if not _asks_for_shape(choice, verdict) or cand.kind in done:
             continue
-        tried.add(cand.kind)
+        done.add(cand.kind)
         shapes = [c for c in _catalog(setup, state) if c.kind == cand.kind and c.shape]
-        if not shapes:
-            continue
         others = [c for c in state.chosen if c is not choice]
-        plans = [_shaped_plan(setup, state, others, cand, c, log) for c in shapes]
+        alone = reduced if len(unstable) == 1 else (
+            _without(setup, state, others) if others else state0)
+        if not shapes or alone is None:
+            continue
+        plans = [_shaped_plan(setup, state, choice, c) for c in shapes]
         own = whiteners_of(state.fit.residuals, setup.probes)
-        best, best_gain = None, 0.0
+        top = max(c.free[c.shape[0]][0] for c in shapes)
+        best, best_gain = None, -BIC_MARGIN
         for c, trial in zip(shapes, _refitted(setup, state, plans, "shape"), strict=True):
             if trial is None:
                 continue
-            judged = judge(setup, reduced, Trial((c,), trial.fit))
+            judged = judge(setup, alone, Trial((c,), trial.fit))
             gain = _swap_gain(setup, state, trial, len(c.free) - len(cand.free), own)
             setup.log(f"  in place of {cand.key}: {c.key}: {judged.note}; against it ΔBIC "
                       f"{gain:.1f}")
-            if judged.passed and gain < best_gain:
+            if judged.passed and gain < best_gain and trial.params[c.shape[0]] <= top and \
+                    not _traded(setup, state0, trial):
                 best, best_gain = (trial, judged), gain
         if best is not None:
             trial, judged = best
             log["trials"][judged.key] = judged
             setup.log(f"revised: {judged.key} replaces {cand.key} (its shaped form)")
+            log["rejected"].append({"effect": cand.effect, "target": cand.target,
+                                    "reason": f"its law bent by {SHAPED_BEND}: replaced by "
+                                              f"its shaped form {judged.key}"})
             return trial
     return None
 
 
+def _asks_for_shape(choice: Choice, verdict: Any) -> bool:
+    """Whether an unstable effect is a plain form (``SHAPED_FORMS``) whose law is bent, most
+    by ``SHAPED_BEND``."""
+    cand, law = choice.candidate, verdict.law
+    if cand.effect not in SHAPED_FORMS or cand.shape or choice.correction or \
+            law is None or not law.bent or not law.bends:
+        return False
+    big = int(np.argmax(np.abs(law.bends)))
+    return law.terms[big] == SHAPED_BEND
+
+
 def _catalog(setup: Setup, state: ModelState) -> list[Any]:
-    """The catalog's candidates for the declared netlist, as ``propose`` builds them."""
+    """The declared netlist's candidates of the catalog with no harmonic orders, the probes
+    by name (a component's drift is all that is asked of them here)."""
     t = np.asarray(setup.record.t, float)
     return candidates(build(state.base_raw), {}, setup.probes, duration=float(t[-1] - t[0]))
 
 
-def _shaped_plan(setup: Setup, state: ModelState, others: list[Choice], plain: Any,
-                 shaped: Any, log: dict[str, Any]):
-    """The plan (``_refitted``'s) of ``others`` with ``shaped`` in place of ``plain``, its
-    size started where its initial slope is the plain form's slope (a warm-up's rise over
-    its time constant is the straight drift's rate) and its shape at its own start."""
-    chosen = [*others, Choice(shaped, False)]
-    raw, free, params, bounds = _choices_plan(setup, state, chosen, log)
-    size = next(n for n in shaped.free if n not in shaped.shape)
-    slope = state.params[next(iter(plain.free))]
-    tau = shaped.free[shaped.shape[0]][0]
-    _, lo, hi = shaped.free[size]
+def _shaped_plan(setup: Setup, state: ModelState, plain: Choice, shaped: Any
+                 ) -> tuple[list[Choice], Any, list[str], dict[str, float],
+                            dict[str, tuple[float, float]]]:
+    """The plan (``_refitted``'s) of ``state`` with ``shaped`` in ``plain``'s place, from
+    the values fitted with everything in place: the shaped form's size [-] started where its
+    initial slope is the plain form's rate [1/s] (rise = rate x tau, tau [s] at the shape's
+    start), clipped to its range."""
+    rate_end, size_end = SHAPED_FORMS[plain.candidate.effect]
+    chosen = [Choice(shaped, False) if c is plain else c for c in state.chosen]
+    raw = _base_raw(state, chosen)
+    free = [*setup.declared, *(n for c in chosen for n in c.candidate.free)]
+    params = {n: v for n, v in state.params.items() if n not in plain.candidate.free}
     params.update({n: spec[0] for n, spec in shaped.free.items()})
-    params[size] = min(max(slope * tau, lo), hi)
+    rate = next(v for n, v in state.params.items()
+                if n in plain.candidate.free and n.endswith(rate_end))
+    size = next(n for n in shaped.free if n.endswith(size_end))
+    _, lo, hi = shaped.free[size]
+    params[size] = min(max(rate * shaped.free[shaped.shape[0]][0], lo), hi)
+    bounds = {**{n: b for n, b in state.bounds.items() if n not in plain.candidate.free},
+              **{n: (lo_, hi_) for n, (_, lo_, hi_) in shaped.free.items()}}
     return chosen, raw, free, params, bounds
 
 
