@@ -36,7 +36,6 @@ status 1 above it. Nothing here runs a diagnosis.
 
 from __future__ import annotations
 
-import math
 import os
 import sys
 import tempfile
