@@ -747,7 +747,8 @@ def test_an_effect_whose_parameters_are_not_constants_is_a_stand_in(monkeypatch)
     from circuitsim.loop.diagnose.stability import STABLE_SHARE, Stability
 
     def effect(name):
-        return SimpleNamespace(effect=name, target="x", key=name, free={name: (0.0, 0, 1)})
+        return SimpleNamespace(effect=name, target="x", key=name, free={name: (0.0, 0, 1)},
+                               shape=())
 
     drift, offset = effect("resistance-drift"), effect("sensor-offset")
     verdicts = {"resistance-drift": Stability(-900.0, STABLE_SHARE * 1000 + 1, 1000.0),
@@ -1510,12 +1511,13 @@ def test_what_stays_beside_a_rejected_stand_in_must_explain_half_the_structure_a
     import circuitsim.loop.diagnose.engine as eng
     from circuitsim.loop.diagnose.context import Choice
 
-    drift = Choice(SimpleNamespace(effect="resistance-drift", target="Ra", key="drift"))
+    drift = Choice(SimpleNamespace(effect="resistance-drift", target="Ra", key="drift",
+                                   shape=()))
     gain = Choice(SimpleNamespace(effect="sensor-gain", target="current", key="gain"))
     state0 = SimpleNamespace(chosen=[], name="declared")
     both = SimpleNamespace(chosen=[drift, gain], name="both")
     alone = SimpleNamespace(chosen=[gain], name="gain alone")
-    verdict = SimpleNamespace(why=lambda: "its law does not hold over the record")
+    verdict = SimpleNamespace(why=lambda: "its law does not hold over the record", law=None)
     flagged = iter([[(drift, verdict)], []])
     monkeypatch.setattr(eng, "_unstable_effects", lambda setup, state, log: next(flagged))
     monkeypatch.setattr(eng, "_without", lambda setup, state, keep:

@@ -1158,9 +1158,11 @@ def _shaped(setup: Setup, state0: ModelState, state: ModelState, reduced: ModelS
 def _asks_for_shape(choice: Choice, verdict: Any) -> bool:
     """Whether an unstable effect is a plain form (``SHAPED_FORMS``) whose law is bent, most
     by ``SHAPED_BEND``."""
-    cand, law = choice.candidate, verdict.law
-    if cand.effect not in SHAPED_FORMS or cand.shape or choice.correction or \
-            law is None or not law.bent or not law.bends:
+    cand = choice.candidate
+    if cand.effect not in SHAPED_FORMS or choice.correction or cand.shape:
+        return False
+    law = verdict.law
+    if law is None or not law.bent or not law.bends:
         return False
     big = int(np.argmax(np.abs(law.bends)))
     return law.terms[big] == SHAPED_BEND
