@@ -886,15 +886,10 @@ def _neighbours(state: ModelState, candidate: Any, tried: set[int]) -> list[Any]
 def _with_order(setup: Setup, state: ModelState, i: int, other: Any) -> ModelState | None:
     """The model with its ``i``-th choice, a harmonic, replaced by ``other`` (another order
     of it), refitted from the same coefficients (None when the refit fails)."""
-    chosen = list(state.chosen)
-    old = chosen[i].candidate
-    chosen[i] = Choice(other, False)
-    raw = _base_raw(state, chosen)
-    free = [*setup.declared, *(n for c in chosen for n in c.candidate.free)]
-    params = {n: v for n, v in state.params.items() if n not in old.free}
-    params.update(zip(other.free, (state.params[n] for n in old.free), strict=True))
-    bounds = {**{n: b for n, b in state.bounds.items() if n not in old.free},
-              **{n: (lo, hi) for n, (_, lo, hi) in other.free.items()}}
+    old = state.chosen[i].candidate
+    chosen, raw, free, params, bounds = _replaced(
+        setup, state, i, other, dict(zip(other.free, (state.params[n] for n in old.free),
+                                         strict=True)))
     model = compile_raw(raw)
     try:
         fit = refit(setup, model, free, params, bounds, nfev=20)
@@ -902,6 +897,25 @@ def _with_order(setup: Setup, state: ModelState, i: int, other: Any) -> ModelSta
         setup.log(f"  refit at order {other.fixed['order']} failed: {exc}")
         return None
     return ModelState(raw, model, free, dict(fit.params), fit, bounds, chosen, state.base_raw)
+
+
+def _replaced(setup: Setup, state: ModelState, i: int, other: Any,
+              starts: Mapping[str, float]
+              ) -> tuple[list[Choice], Any, list[str], dict[str, float],
+                         dict[str, tuple[float, float]]]:
+    """The plan (``_refitted``'s) of ``state`` with its ``i``-th choice replaced by
+    ``other``, a new effect, from the values fitted with everything in place and ``other``'s
+    ``starts`` [SI]."""
+    chosen = list(state.chosen)
+    old = chosen[i].candidate
+    chosen[i] = Choice(other, False)
+    raw = _base_raw(state, chosen)
+    free = [*setup.declared, *(n for c in chosen for n in c.candidate.free)]
+    params = {n: v for n, v in state.params.items() if n not in old.free}
+    params.update(starts)
+    bounds = {**{n: b for n, b in state.bounds.items() if n not in old.free},
+              **{n: (lo, hi) for n, (_, lo, hi) in other.free.items()}}
+    return chosen, raw, free, params, bounds
 
 
 def _take_order(setup: Setup, state: ModelState, i: int, new: ModelState,
@@ -1178,24 +1192,18 @@ def _catalog(setup: Setup, state: ModelState) -> list[Any]:
 def _shaped_plan(setup: Setup, state: ModelState, plain: Choice, shaped: Any
                  ) -> tuple[list[Choice], Any, list[str], dict[str, float],
                             dict[str, tuple[float, float]]]:
-    """The plan (``_refitted``'s) of ``state`` with ``shaped`` in ``plain``'s place, from
-    the values fitted with everything in place: the shaped form's size [-] started where its
-    initial slope is the plain form's rate [1/s] (rise = rate x tau, tau [s] at the shape's
-    start), clipped to its range."""
+    """The plan (``_refitted``'s) of ``state`` with ``shaped`` in ``plain``'s place
+    (``_replaced``): the shaped form's size [-] started where its initial slope is the plain
+    form's rate [1/s] (rise = rate x tau, tau [s] at the shape's start), clipped to its
+    range."""
     rate_end, size_end = SHAPED_FORMS[plain.candidate.effect]
-    chosen = [Choice(shaped, False) if c is plain else c for c in state.chosen]
-    raw = _base_raw(state, chosen)
-    free = [*setup.declared, *(n for c in chosen for n in c.candidate.free)]
-    params = {n: v for n, v in state.params.items() if n not in plain.candidate.free}
-    params.update({n: spec[0] for n, spec in shaped.free.items()})
-    rate = next(v for n, v in state.params.items()
-                if n in plain.candidate.free and n.endswith(rate_end))
+    rate = state.params[next(n for n in plain.candidate.free if n.endswith(rate_end))]
     size = next(n for n in shaped.free if n.endswith(size_end))
     _, lo, hi = shaped.free[size]
-    params[size] = min(max(rate * shaped.free[shaped.shape[0]][0], lo), hi)
-    bounds = {**{n: b for n, b in state.bounds.items() if n not in plain.candidate.free},
-              **{n: (lo_, hi_) for n, (_, lo_, hi_) in shaped.free.items()}}
-    return chosen, raw, free, params, bounds
+    starts = {n: spec[0] for n, spec in shaped.free.items()}
+    starts[size] = min(max(rate * starts[shaped.shape[0]], lo), hi)
+    i = next(j for j, c in enumerate(state.chosen) if c is plain)
+    return _replaced(setup, state, i, shaped, starts)
 
 
 def _rejected_as_stand_ins(setup: Setup, state0: ModelState, state: ModelState,
