@@ -8,6 +8,7 @@ import textwrap
 import warnings
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 HERE = Path(__file__).resolve().parent
@@ -60,3 +61,16 @@ def kim_steps(monkeypatch) -> tuple:
     monkeypatch.setenv("CIRCUITSIM_KERNELS", "numba")
     sets = [{"Ra": 1.1}] + [{"Ra": 1.1 * (1 + 1e-4 * j)} for j in range(1, 11)]
     return model, len(model.state_names), sets
+
+
+def white_over_pink(seed: int, n: int = 1200) -> tuple[np.ndarray, np.ndarray]:
+    """White noise of 0.015 and a 1/f noise of 0.02 (its amplitude spectrum 1/sqrt(k), by
+    FFT) over 6 s at 200 Hz, as fresh33's null record ak02 read its gate's speed; and the
+    white noise alone."""
+    rng = np.random.default_rng(seed)
+    white = 0.015 * rng.normal(size=n)
+    spectrum = np.fft.rfft(rng.normal(size=n))
+    spectrum[0] = 0.0
+    spectrum[1:] /= np.sqrt(np.arange(1, spectrum.size))
+    pink = np.fft.irfft(spectrum, n)
+    return white + pink * (0.02 / pink.std()), white

@@ -23,7 +23,7 @@ from circuitsim.loop.record import Record
 from circuitsim.netlist import build
 from circuitsim.solve import fork as fork_mod
 
-from conftest import NETLISTS
+from conftest import NETLISTS, white_over_pink
 
 MOTOR = NETLISTS / "examples" / "dc_motor.yaml"
 NOISE = {"speed": 0.1, "i": 1e-3}
@@ -1213,6 +1213,25 @@ def test_a_long_memory_is_noise_a_line_beside_it_is_not():
         ripple = math.sqrt(2 * 0.15 * np.var(r)) * np.sin(2 * np.pi * 37.0 * t)
         assert _long_memory(t, r), seed
         assert not _long_memory(t, r + ripple), seed
+
+
+def test_a_long_memory_under_white_noise_is_noise_a_low_line_in_white_noise_is_not():
+    """describe._long_memory where the memory shows only through white noise (fresh33's ak02:
+    a gate's speed read with white noise 0.015 and 1/f noise 0.02, 6 s at 200 Hz): it holds
+    on the seeds whose lowest sqrt(n) bins give no memory at all, and never on white noise
+    with a line 3 cycles long (a tenth of its power) alone."""
+    from circuitsim.loop.diagnose.describe import _long_memory
+    from circuitsim.loop.diagnose.noise import memory_whiteners
+
+    t = np.arange(1200) / 200.0
+    missed = [s for s in range(20)
+              if memory_whiteners({"x": white_over_pink(s)[0]}, ["x"])["x"].d == 0.0]
+    assert missed
+    for seed in missed:
+        assert _long_memory(t, white_over_pink(seed)[0]), seed
+    for seed in range(20):
+        line = 0.015 * math.sqrt(0.2) * np.sin(2 * np.pi * 0.5 * t + seed)
+        assert not _long_memory(t, white_over_pink(seed)[1] + line), seed
 
 
 def _accepted_at(rec, order):

@@ -12,8 +12,11 @@ from circuitsim.loop.diagnose.noise import (
     lines_of,
     memory_order,
     memory_whiteners,
+    perturbed_memory_order,
     significant_lines,
 )
+
+from conftest import white_over_pink
 
 
 def test_fractional_difference_of_order_one_is_the_first_difference_and_inverts():
@@ -69,6 +72,31 @@ def test_a_residual_full_of_structure_is_not_given_a_long_memory():
     lines = sum(2.0 * np.sin(2 * np.pi * f * t + f) for f in (0.021, 0.037, 0.052, 0.11))
     assert memory_whiteners({"x": noise}, ["x"])["x"].d > 0.3
     assert memory_whiteners({"x": noise + lines}, ["x"])["x"].d == 0.0
+
+
+def test_a_long_memory_is_read_through_white_noise_where_the_lowest_bins_miss_it():
+    """perturbed_memory_order on 20 seeds of a 1/f noise under white noise: d between 0.3 and
+    0.49 on every one (a 1/f noise is d = 0.5, capped at 0.49), where the log-periodogram
+    regression on the lowest sqrt(n) bins of the typical windows (``memory_whiteners``)
+    gives 0 on some (2 of these 20); white noise,
+    white noise with a 0.5 Hz line of a tenth of its power, and AR(1) noises (a short
+    memory, rising towards zero frequency too: phi 0.5 and 0.95) give 0."""
+    t = np.arange(1200) / 200.0
+    missed = 0
+    for seed in range(20):
+        x, white = white_over_pink(seed)
+        assert 0.3 < perturbed_memory_order(x) <= 0.49, seed
+        missed += memory_whiteners({"x": x}, ["x"])["x"].d == 0.0
+        line = 0.015 * np.sqrt(0.2) * np.sin(2 * np.pi * 0.5 * t + seed)
+        assert perturbed_memory_order(white) == 0.0, seed
+        assert perturbed_memory_order(white + line) == 0.0, seed
+        e = np.random.default_rng(100 + seed).normal(size=t.size)
+        for phi in (0.5, 0.95):
+            ar = np.zeros(t.size)
+            for k in range(1, t.size):
+                ar[k] = phi * ar[k - 1] + e[k]
+            assert perturbed_memory_order(ar) == 0.0, (seed, phi)
+    assert missed >= 1
 
 
 # ------------------------------------------------------------ lines on uneven times

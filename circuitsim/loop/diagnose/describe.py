@@ -17,9 +17,12 @@ import numpy as np
 from circuitsim.loop.diagnose.context import ModelState, Setup
 from circuitsim.loop.diagnose.noise import (
     MEMORY_STRUCTURE_MAX,
+    Whitener,
     fit_whitener,
+    fractional_difference,
     lines_of,
     memory_whiteners,
+    perturbed_memory_order,
     significant_lines,
     transient_excess,
     whiteners_of,
@@ -213,10 +216,21 @@ def _long_memory(t: np.ndarray, r: np.ndarray) -> bool:
     """Whether a residual ``r`` at times ``t`` [s] is noise with long memory: one the
     long-memory whitener (a fractional difference, then AR) leaves with structure under
     ``MIN_SHARE`` where the AR filter alone did not. A line -- a tachometer's ripple seen by
-    its own probe alone -- outlasts a fractional difference and keeps its share."""
+    its own probe alone -- outlasts a fractional difference and keeps its share.
+
+    Where the decisions' whitener finds no memory, it is read once more through white noise
+    (``perturbed_memory_order``), on the whole residual: a 1/f speed noise under white
+    noise, its lowest bins flattened by the white part, left one of them as a "line" on
+    fresh33's null record ak02; and the typical windows the decisions read the memory on
+    leave out the 1/f noise's own widest excursions. A transient outside them keeps its
+    share through the fractional difference. The decisions keep their whitener."""
     w = memory_whiteners({"r": r}, ["r"])["r"]
     if not w.d:
-        return False
+        d = perturbed_memory_order(r)
+        if not d:
+            return False
+        base = fit_whitener(fractional_difference(r, d))
+        w = Whitener(base.a, base.sigma, d)
     e = w.apply(r)
     lines = lines_of(e, t, r, w)
     share = max(lines.structured / lines.total if lines.total > 0 else 0.0,
