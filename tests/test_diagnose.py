@@ -1836,3 +1836,23 @@ def test_only_a_straight_drift_bent_most_by_time_squared_asks_for_its_warm_up():
     assert not _asks_for_shape(Choice(warm), verdict((0.02, -0.55)))
     assert not _asks_for_shape(Choice(line, True), verdict((0.02, -0.55)))
     assert not _asks_for_shape(Choice(line), Stability(-50.0, 60.0, 100.0))
+
+
+def test_a_final_error_above_the_first_is_shown_by_probe_with_its_reason():
+    """Diagnosis.summary: the error is the probes' spreads' measure while the fits weigh each
+    probe by its noise, so a final model may read worse as a whole (fresh35's am12: current
+    0.106 -> 0.075, speed 0.121 -> 0.156); the summary then gives each probe's and says
+    why. A fall keeps the one pair of numbers."""
+    from circuitsim.loop.diagnose.result import Diagnosis
+
+    def diag(before, after):
+        return Diagnosis(math.sqrt(np.mean(np.square(list(before.values())))),
+                         math.sqrt(np.mean(np.square(list(after.values())))), before, after,
+                         [], [], {"structure": False}, {}, {})
+
+    up = diag({"current": 0.1056, "speed": 0.1214}, {"current": 0.07485, "speed": 0.1557})
+    assert "(error 0.1138 -> 0.1222: by probe current 0.1056 -> 0.07485, speed 0.1214 -> " \
+           "0.1557; the fit weighs each probe by its noise" in up.summary()
+    down = diag({"current": 0.1056, "speed": 0.1214}, {"current": 0.05, "speed": 0.06})
+    assert down.summary().endswith(f"(error {down.error_before:.4g} -> "
+                                   f"{down.error_after:.4g})")
