@@ -120,10 +120,8 @@ def memory_order(r: np.ndarray) -> float:
     power = np.abs(np.fft.rfft(x)[1:m + 1]) ** 2
     if np.any(power <= 0.0):
         return 0.0
-    # lines are structure, not memory (a slow shaft's cogging orders sit among these bins):
-    # bins above the line threshold over their neighbours' median are left out
-    local = median_filter(power, size=9, mode="nearest") / math.log(2.0)
-    keep = power <= line_threshold(m) * local
+    # lines are structure, not memory (a slow shaft's cogging orders sit among these bins)
+    keep = _not_lines(power, m)
     if keep.sum() < 8:
         return 0.0
     lam = 2.0 * math.pi * np.arange(1, m + 1)[keep] / n
@@ -136,8 +134,8 @@ def memory_order(r: np.ndarray) -> float:
 
 #: The lowest n^PERTURBED_BINS periodogram bins a long memory seen through white noise is
 #: read on: the sqrt(n) of the log-periodogram regression hold too few where a white part
-#: flattens them (a 1/f speed noise of 0.02 beside white noise of 0.015, 6 s at 200 Hz: d = 0
-#: on its 34 lowest bins, while its lowest 8 hold 25 times the power of its top half).
+#: flattens them (a 1/f speed noise of 0.02 beside white noise of 0.015, 6 s at 200 Hz: d
+#: 0.17 on its 32 lowest bins, under the regression's threshold of 0.23).
 PERTURBED_BINS = 0.7
 #: The likelihood ratio a long memory under white noise must reach against a flat spectrum
 #: and against an AR(1) one (a short memory) on those bins: chi-square of one parameter
@@ -159,8 +157,7 @@ def perturbed_memory_order(r: np.ndarray) -> float:
     if m < 16:
         return 0.0
     power = np.abs(np.fft.rfft(x)[1:m + 1]) ** 2 / n
-    local = median_filter(power, size=9, mode="nearest") / math.log(2.0)
-    keep = power <= line_threshold(m) * local
+    keep = _not_lines(power, m)
     power = power[keep]
     if power.size < 16 or not np.all(power > 0.0):
         return 0.0
@@ -179,13 +176,19 @@ def perturbed_memory_order(r: np.ndarray) -> float:
         phi = math.tanh(p[1])
         return whittle(np.exp(p[0]) / (1.0 + phi * phi - 2.0 * phi * np.cos(lam)))
 
-    fits = [_minimum(memory, [a, a + c, d], [(-30, 30), (-30, 30), (0.0, 0.49)])
-            for a in (math.log(float(np.median(power[power.size // 2:]))),)
-            for d in (0.1, 0.25, 0.45) for c in (-3.0, 0.0)]
-    best = min(fits, key=lambda o: o.fun)
+    a = math.log(float(np.median(power[power.size // 2:])))  # the white level's start
+    best = min((_minimum(memory, [a, a + c, d], [(-30, 30), (-30, 30), (0.0, 0.49)])
+                for d in (0.1, 0.25, 0.45) for c in (-3.0, 0.0)), key=lambda o: o.fun)
     null = min(whittle(np.ones_like(power)),
                *(_minimum(short, [0.0, z], [(-30, 30), (-5, 5)]).fun for z in (0.3, 1.5)))
     return float(best.x[2]) if 2.0 * (null - best.fun) > PERTURBED_LR else 0.0
+
+
+def _not_lines(power: np.ndarray, m: int) -> np.ndarray:
+    """The periodogram bins of ``power`` (the lowest ``m``) that are no line: under the line
+    threshold over their neighbours' median."""
+    local = median_filter(power, size=9, mode="nearest") / math.log(2.0)
+    return power <= line_threshold(m) * local
 
 
 def _minimum(fun: Callable[[np.ndarray], float], start: list[float],
