@@ -341,6 +341,79 @@ def test_a_trial_beyond_a_physical_limit_is_rejected_with_its_reason():
     assert _note(trial).startswith("fits only beyond its physical range: R1 changing by")
 
 
+def _masking_round(monkeypatch, after: float):
+    """``engine._unmasked`` on fresh37's ao08 as its trials went: a speed-sensor offset
+    significant by the AR filter (ΔBIC -81.3) but not with the memory taken out (-7.9), a
+    force offset not significant; the next screen (an unbalance) passes, and with it in the
+    model the offset's ΔBIC is ``after``. The refits are stand-ins with those verdicts."""
+    from types import SimpleNamespace
+
+    from circuitsim.loop.diagnose import engine
+    from circuitsim.loop.diagnose.decide import Trial
+
+    def cand(key):
+        return SimpleNamespace(key=key, effect=key, target="x", free={f"{key}_p": None},
+                               apply=lambda raw, k=key: [*raw, k])
+
+    def screen(key):
+        return SimpleNamespace(proposal=SimpleNamespace(candidate=cand(key)), share=0.5)
+
+    offset = Trial((cand("offset"),), SimpleNamespace(params={"offset_p": 1.5}),
+                   delta_bic=-81.3, memory_bic=-7.9, share=0.29)
+    force = Trial((cand("force"),), SimpleNamespace(params={}), delta_bic=59.8)
+    unbalance = Trial((cand("unbalance"),), SimpleNamespace(params={}), delta_bic=-5253.2,
+                      share=0.87)
+    refitted = []
+
+    def round_(setup, state, screens, log):
+        refitted.extend(s.proposal.candidate.key for s in screens)
+        return unbalance, frozenset()
+
+    def accept(setup, state, winner, log, quiet=False):
+        log["trials"]["unbalance"] = winner[0]
+        return SimpleNamespace(raw=[*state.raw, "unbalance"], fit=SimpleNamespace(error=0.01))
+
+    monkeypatch.setattr(engine, "_refit_round", round_)
+    monkeypatch.setattr(engine, "_accept", accept)
+    monkeypatch.setattr(engine, "_one_per_rigid_set", lambda state, screens, log: screens)
+    monkeypatch.setattr(engine, "compile_raw", lambda raw: raw)
+    monkeypatch.setattr(engine, "refit_trial", lambda setup, state, cands, starts, model:
+                        Trial(tuple(cands), SimpleNamespace(params=starts)))
+    monkeypatch.setattr(engine, "judge", lambda setup, state, trial: dataclasses.replace(
+        trial, delta_bic=after, share=1.0))
+    setup = SimpleNamespace(log=lambda line: None)
+    state = SimpleNamespace(raw=[])
+    screens = [screen(k) for k in ("offset", "force", "unbalance", "gain", "viscous", "more")]
+    return engine._unmasked, setup, state, screens, [offset, force], refitted
+
+
+def test_a_candidate_masked_by_the_long_memory_is_unmasked_by_the_next_screens(monkeypatch):
+    """A round that ends with a candidate failed by the long-memory test alone refits the
+    next UNMASK_NEXT screens; the best of them is taken when the masked one then passes
+    (ao08: the unbalance, then the offset at ΔBIC -6500)."""
+    unmasked, setup, state, screens, trials, refitted = _masking_round(monkeypatch, -6500.6)
+    assert trials[0].masked and not trials[0].passed and not trials[1].masked
+    log = {"round": trials, "trials": {}}
+    won = unmasked(setup, state, screens, log)
+    assert won is not None and won.raw == ["unbalance"]
+    assert refitted == ["unbalance", "gain", "viscous"]  # those not refitted, three of them
+    assert "unbalance" in log["trials"]
+
+
+def test_a_screen_that_passes_but_unmasks_nothing_is_not_taken(monkeypatch):
+    """fresh31's outside record ai12: two inertias failed by the memory test alone, an
+    unbalance passed next but the inertias stayed insignificant with it: the round ends as
+    it did, with nothing taken and the trials' log as it was; with no masked candidate the
+    next screens are not refitted at all."""
+    unmasked, setup, state, screens, trials, refitted = _masking_round(monkeypatch, 42.6)
+    log = {"round": trials, "trials": {}}
+    assert unmasked(setup, state, screens, log) is None
+    assert log["trials"] == {}
+    refitted.clear()
+    log = {"round": trials[1:], "trials": {}}
+    assert unmasked(setup, state, screens, log) is None and refitted == []
+
+
 @pytest.mark.parametrize(("a", "b"), [(0.3, 0.15), (0.24, 0.3), (0.15, 0.3)])
 def test_effects_that_explain_less_than_they_leave_are_a_partial_stand_in(a, b):
     """The effects found must, together, explain more than the structure they leave.

@@ -102,6 +102,14 @@ class Trial:
             not self.at_bound and not self.beyond and (line or not self.small_of_large)
 
     @property
+    def masked(self) -> bool:
+        """Significant by the AR filter, within its physical range, but not once the noise's
+        long memory is taken out: that memory, and the share of the structure it explains,
+        may be another effect's structure left in the residual."""
+        return self.delta_bic < -BIC_MARGIN <= self.memory_bic and not self.at_bound and \
+            not self.beyond
+
+    @property
     def key(self) -> str:
         return " + ".join(c.key for c in self.candidates)
 
