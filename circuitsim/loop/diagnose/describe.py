@@ -23,6 +23,7 @@ from circuitsim.loop.diagnose.noise import (
     lines_of,
     memory_whiteners,
     perturbed_memory_order,
+    rises_to_zero,
     significant_lines,
     transient_excess,
     whiteners_of,
@@ -223,7 +224,14 @@ def _long_memory(t: np.ndarray, r: np.ndarray) -> bool:
     noise, its lowest bins flattened by the white part, left one of them as a "line" on
     fresh33's null record ak02; and the typical windows the decisions read the memory on
     leave out the 1/f noise's own widest excursions. A transient outside them keeps its
-    share through the fractional difference. The decisions keep their whitener."""
+    share through the fractional difference. The decisions keep their whitener.
+
+    A spectrum that rises away from zero frequency is no memory however the order reads
+    (``rises_to_zero``): an AR filter after the fractional difference whitens a resonance's
+    band too, and a housing rocking on its mounts was excused as the current sensor's own
+    noise (fresh38's ap14)."""
+    if not rises_to_zero(r):
+        return False
     w = memory_whiteners({"r": r}, ["r"])["r"]
     if not w.d:
         d = perturbed_memory_order(r)
