@@ -367,6 +367,7 @@ def _masking_round(monkeypatch, after: float):
 
     def round_(setup, state, screens, log):
         refitted.extend(s.proposal.candidate.key for s in screens)
+        log.setdefault("indistinct", []).append("unbalance and gain explain it equally")
         return unbalance, frozenset()
 
     def accept(setup, state, winner, log, quiet=False):
@@ -393,7 +394,7 @@ def test_a_candidate_masked_by_the_long_memory_is_unmasked_by_the_next_screens(m
     (ao08: the unbalance, then the offset at ΔBIC -6500)."""
     unmasked, setup, state, screens, trials, refitted = _masking_round(monkeypatch, -6500.6)
     assert trials[0].masked and not trials[0].passed and not trials[1].masked
-    log = {"round": trials, "trials": {}}
+    log = {"round": trials, "trials": {}, "rejected": [], "indistinct": []}
     won = unmasked(setup, state, screens, log)
     assert won is not None and won.raw == ["unbalance"]
     assert refitted == ["unbalance", "gain", "viscous"]  # those not refitted, three of them
@@ -403,12 +404,15 @@ def test_a_candidate_masked_by_the_long_memory_is_unmasked_by_the_next_screens(m
 def test_a_screen_that_passes_but_unmasks_nothing_is_not_taken(monkeypatch):
     """fresh31's outside record ai12: two inertias failed by the memory test alone, an
     unbalance passed next but the inertias stayed insignificant with it: the round ends as
-    it did, with nothing taken and the trials' log as it was; with no masked candidate the
-    next screens are not refitted at all."""
+    it did, with nothing taken, the trials' log and the near-equals as they were, and the
+    unbalance rejected with its reason; with no masked candidate the next screens are not
+    refitted at all."""
     unmasked, setup, state, screens, trials, refitted = _masking_round(monkeypatch, 42.6)
-    log = {"round": trials, "trials": {}}
+    log = {"round": trials, "trials": {}, "rejected": [], "indistinct": ["before"]}
     assert unmasked(setup, state, screens, log) is None
-    assert log["trials"] == {}
+    assert log["trials"] == {} and log["indistinct"] == ["before"]
+    assert [r["effect"] for r in log["rejected"]] == ["unbalance"]
+    assert "unmasks none: not taken" in log["rejected"][0]["reason"]
     refitted.clear()
     log = {"round": trials[1:], "trials": {}}
     assert unmasked(setup, state, screens, log) is None and refitted == []

@@ -618,10 +618,11 @@ def _unmasked(setup: Setup, state: ModelState, screens: list[Screen], log: dict[
         return None
     setup.log(f"{', '.join(t.key for t in masked)} failed by the long-memory test alone: "
               f"refitting the next {len(rest)}")
+    saved = {k: list(log[k]) for k in ("indistinct", "alternatives") if k in log}
     winner = _refit_round(setup, state, rest, log)
     if winner is None:
         return None
-    saved = dict(log["trials"]), dict(log.get("rounds", {}))
+    trials, rounds = dict(log["trials"]), dict(log.get("rounds", {}))
     won = _accept(setup, state, winner, log, quiet=True)
     for m in sorted(masked, key=lambda t: t.delta_bic):
         c = m.candidates[0]
@@ -634,7 +635,17 @@ def _unmasked(setup: Setup, state: ModelState, screens: list[Screen], log: dict[
             setup.log(f"accepted {winner[0].key}, which unmasks {c.key}: error "
                       f"{won.fit.error:.4g}")
             return won
-    log["trials"], log["rounds"] = saved
+    # not taken: what the report says of it is that, not a near-equal of anything
+    log["trials"], log["rounds"] = trials, rounds
+    log.pop("alternatives", None)
+    log.update(saved)
+    best = winner[0]
+    log["rejected"].append({"effect": best.candidates[0].effect,
+                            "target": best.candidates[0].target, "delta_bic": best.delta_bic,
+                            "structure_share": best.share,
+                            "reason": f"passes (ΔBIC {best.delta_bic:.1f}) refitted past the "
+                                      f"round's best to unmask {', '.join(t.key for t in masked)}"
+                                      ", but unmasks none: not taken"})
     return None
 
 
