@@ -112,12 +112,11 @@ def memory_order(r: np.ndarray) -> float:
     exceeds twice its standard error pi / sqrt(24 m). An AR filter of low order cannot
     follow such a rise, and what lives at those frequencies -- a gain on a slow speed
     profile, an offset, a drift -- then looks far more certain than it is."""
-    x = np.asarray(r, float) - float(np.mean(r))
-    n = x.size
+    n = np.size(r)
     m = int(math.sqrt(n))
     if m < 8:
         return 0.0
-    power = np.abs(np.fft.rfft(x)[1:m + 1]) ** 2
+    power = _low_periodogram(r, m)
     if np.any(power <= 0.0):
         return 0.0
     # lines are structure, not memory (a slow shaft's cogging orders sit among these bins)
@@ -151,12 +150,11 @@ def perturbed_memory_order(r: np.ndarray) -> float:
     memory, which rises towards zero frequency too -- by ``PERTURBED_LR``. Where white noise
     lies over a 1/f noise, ``memory_order``'s regression on the lowest sqrt(n) bins sees the
     sum, whose slope there is far less than the memory's own."""
-    x = np.asarray(r, float) - float(np.mean(r))
-    n = x.size
+    n = np.size(r)
     m = min(n // 2 - 1, int(n ** PERTURBED_BINS))
     if m < 16:
         return 0.0
-    power = np.abs(np.fft.rfft(x)[1:m + 1]) ** 2 / n
+    power = _low_periodogram(r, m) / n
     keep = _not_lines(power, m)
     power = power[keep]
     if power.size < 16 or not np.all(power > 0.0):
@@ -204,15 +202,21 @@ def rises_to_zero(r: np.ndarray) -> bool:
     it as one (fresh38's ap14: a motor housing rocking on its rubber mounts, a band at
     30-40 Hz 680 times the floor's median power beside 1.4 times at 0-5 Hz, read as d 0.49;
     its lowest block stands 2.7 in the log under the band's)."""
-    x = np.asarray(r, float) - float(np.mean(r))
-    blocks = int(math.sqrt(x.size)) // SHAPE_BLOCK
+    blocks = int(math.sqrt(np.size(r))) // SHAPE_BLOCK
     if blocks < 2:
         return True
-    power = np.abs(np.fft.rfft(x)[1:blocks * SHAPE_BLOCK + 1]) ** 2
+    power = _low_periodogram(r, blocks * SHAPE_BLOCK)
     if not np.all(power > 0.0):
         return True
     means = np.log(power).reshape(blocks, SHAPE_BLOCK).mean(axis=1)
     return float(np.max(means[1:]) - means[0]) <= math.log(SHAPE_RISE)
+
+
+def _low_periodogram(r: np.ndarray, m: int) -> np.ndarray:
+    """|FFT|^2 of the residual less its mean at its lowest ``m`` non-zero frequencies [the
+    residual's unit squared times samples]: what the memory's order and shape are read on."""
+    x = np.asarray(r, float) - float(np.mean(r))
+    return np.abs(np.fft.rfft(x)[1:m + 1]) ** 2
 
 
 def _not_lines(power: np.ndarray, m: int) -> np.ndarray:
