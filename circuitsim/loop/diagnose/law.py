@@ -87,17 +87,16 @@ LAW_SHARE = 0.3
 #: -13 to -819 -- the drive's loop is not the model's -- and a harmonic is held to its line
 #: instead (``decide.OWN_LINE_SHARE``).
 LAW_RANGE = 0.1
-#: The same threshold holds a sensor's delay to its own time scale. Any linear stage that
-#: delays a reading by about tau reads x(t - tau) + c2 tau^2 x^(2) + c3 tau^3 x^(3) + ...
-#: (the Taylor series of H(s) e^{s tau} in s tau), and for a pure delay c2 = c3 = 0 at every
-#: tau. A stand-in has no such freedom: a first-order lag gives c2 = 1/2, a sample-and-hold
-#: or a moving average over a window 1/6, a second-order stage of damping zeta
-#: 1/2 - 1/(4 zeta^2) (and c3 = 1/6 where that vanishes, at zeta = 0.707). The catalog
+#: A sensor's delay is held to its own time scale instead (``DELAY_DEPARTURE``). Any linear
+#: stage that delays a reading by about tau reads x(t - tau) + c2 tau^2 x^(2) + c3 tau^3
+#: x^(3) + ... (the Taylor series of H(s) e^{s tau} in s tau), and for a pure delay c2 = c3
+#: = 0 at every tau. A stand-in has no such freedom: a first-order lag gives c2 = 1/2, a
+#: sample-and-hold or a moving average over a window 1/6, a second-order stage of damping
+#: zeta 1/2 - 1/(4 zeta^2) (and c3 = 1/6 where that vanishes, at zeta = 0.707). The catalog
 #: reads the delay through a Padé all-pass (``effects._probe_delay``), e^{-s tau} times
 #: (1 - (s tau)^3/12 ...): against it a pure delay has c3 = 1/12 (``PURE_DELAY_BENDS``),
-#: and it is the departure from that which is judged. A delay whose significant bend has a
-#: coefficient at least LAW_RANGE from a pure delay's, each judged where it is significant
-#: beside the other (``_departure``), is no delay. Written from these series on 2026-11-28,
+#: and it is the departure from that which is judged, each coefficient where it is
+#: significant beside the other (``_departure``). Written from these series on 2026-11-28,
 #: with the benchmark's four records in hand whose delay stood in for a filter (k12's LC
 #: filter gave c2 = -4.5, k14's tachometer lag 0.31, v11's sensor bandwidth -0.55, x12's
 #: sample-and-hold 0.13, each near its series' value); no right delay's bend passed the BIC
@@ -105,6 +104,15 @@ LAW_RANGE = 0.1
 #: a pure delay's bends (c2, c3) against the catalog's Padé stage, which lags a delay's
 #: phase by (w tau)^3/12 (checked on sines: 0.079 with the reading's numerical derivatives)
 PURE_DELAY_BENDS = (0.0, 1.0 / 12.0)
+#: The departure [-] at which a delay is no delay. A pure delay (a conversion or transport
+#: latency) has none: its bend never passes the BIC margin on the benchmark's records (553
+#: on 2026-11-30), so the threshold only says how small a departure may be and still count.
+#: The stage closest to a delay is the second-order Butterworth, whose c3 stands 1/12 from
+#: the Padé's; half of that lets every first- and second-order stage count where its fitted
+#: coefficient reaches half its series' value -- a10's 800 Hz Butterworth anti-alias filter
+#: (the tune split) gave 0.055, under ``LAW_RANGE``, with a bend of ΔBIC -411, and its
+#: delay was taken for a sensor's. Set on 2026-11-30 with a10 in hand.
+DELAY_DEPARTURE = 1.0 / 24.0
 LAW_PREFIX = "law_bend"
 #: a ``sign`` shape's tanh reaches 0.76 at this share of its driver's largest size: sharp
 #: beside the drivers' ranges, smooth enough to integrate through a reversal
@@ -149,9 +157,11 @@ class LawTest:
     def bent(self) -> bool:
         """The law does not hold: its bend is significant and takes a fair share of what
         the final model leaves, or makes the effect vary by a fair part of itself over the
-        record (``LAW_RANGE``; not for a shaft's harmonic, see there)."""
+        record (``LAW_RANGE``; not for a shaft's harmonic, see there), or a delay depart
+        from a delay (``DELAY_DEPARTURE``)."""
+        limit = LAW_RANGE if self.relative else DELAY_DEPARTURE
         return self.significant and (self.removed >= LAW_SHARE or
-                                     (self.ranged and self.spread >= LAW_RANGE))
+                                     (self.ranged and self.spread >= limit))
 
     def why(self) -> str:
         """The bend, in words (see ``_shapes``)."""
