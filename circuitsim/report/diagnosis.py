@@ -177,6 +177,10 @@ def _remaining(diag: Diagnosis) -> str:
             when += f"{'; ' if when else ''}starts in {a:.3g}-{b:.3g} s, lasts to the end"
         grows = ", ".join(f"{f['signal']} ({f['rank_correlation']:.2f})"
                           for f in e.get("follows") or []) or "-"
+        band = e.get("band")
+        if band:
+            grows += (f"; {band['share']:.0%} of the excess at {band['signal']} "
+                      f"{band['low']:.3g}-{band['high']:.3g}")
         level = e.get("rms_over_noise")
         rows.append(f"<tr><td>{html.escape(p)}</td><td>{_num(level, '.3g')}</td>"
                     f"<td>{e['structured_share']:.1%}</td>"

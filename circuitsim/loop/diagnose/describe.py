@@ -28,6 +28,7 @@ from circuitsim.loop.diagnose.noise import (
     transient_excess,
     whiteners_of,
 )
+from circuitsim.loop.diagnose.operating import band_text, drivers_of, operating_band
 from circuitsim.loop.diagnose.residual import (
     ORDER_TOL,
     RESOLUTION,
@@ -107,7 +108,8 @@ def remaining(setup: Setup, state: ModelState, stand_in: bool = False) -> dict[s
                  "noise_ar_order": len(whiten[p].a),
                  "lines": _lines(lines, shafts, _Locking(setup.record.t, r, state)),
                  "timing": _timing(setup.record.t, r, sigma),
-                 "follows": _follows(setup, state, r, sigma)}
+                 "follows": _follows(setup, state, r, sigma),
+                 "band": operating_band(drivers_of(state.fit.sim, setup.probes), r, sigma, p)}
         spread = _spread(lines, entry["lines"])
         if spread is not None:
             entry["spread"] = spread
@@ -582,7 +584,8 @@ def _note(probes: dict[str, Any], resolved: list[str] | None = None,
         rms = f"rms {level:.3g} times its white noise, " if math.isfinite(level) else ""
         parts.append(f"{p}: {rms}"
                      f"{e['structured_share']:.0%} of the prewhitened residual structure, "
-                     f"{when['kind']}{span}" + _follow_text(e) + _model_text(e) +
+                     f"{when['kind']}{span}" + _follow_text(e) + band_text(e.get("band")) +
+                     _model_text(e) +
                      (f"; {lines}" if lines else "") +
                      ("" if e["white_after_prewhitening"] else "; not white"))
     return "something remains that no catalog effect explains -- " + " | ".join(parts) + own
