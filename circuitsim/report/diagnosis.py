@@ -11,6 +11,7 @@ import numpy as np
 
 from circuitsim.files import atomic_write
 from circuitsim.loop.diagnose.describe import lines_text
+from circuitsim.loop.diagnose.operating import band_text
 from circuitsim.loop.diagnose.result import Accepted, Diagnosis
 
 
@@ -175,12 +176,10 @@ def _remaining(diag: Diagnosis) -> str:
         if "onset" in e["timing"]:
             a, b = e["timing"]["onset"]
             when += f"{'; ' if when else ''}starts in {a:.3g}-{b:.3g} s, lasts to the end"
-        grows = ", ".join(f"{f['signal']} ({f['rank_correlation']:.2f})"
-                          for f in e.get("follows") or []) or "-"
-        band = e.get("band")
-        if band:
-            grows += (f"; {band['share']:.0%} of the excess at {band['signal']} "
-                      f"{band['low']:.3g}-{band['high']:.3g}")
+        grows = "; ".join(filter(None, [
+            ", ".join(f"{f['signal']} ({f['rank_correlation']:.2f})"
+                      for f in e.get("follows") or []),
+            band_text(e.get("band"), lead="")])) or "-"
         level = e.get("rms_over_noise")
         rows.append(f"<tr><td>{html.escape(p)}</td><td>{_num(level, '.3g')}</td>"
                     f"<td>{e['structured_share']:.1%}</td>"

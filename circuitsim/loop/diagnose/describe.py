@@ -516,11 +516,7 @@ def _follows(setup: Setup, state: ModelState, r: np.ndarray, sigma: float
     if np.ptp(power) == 0.0:  # no window above the noise: nothing rises with anything
         return []
     drivers = {"time": t}
-    for q in setup.probes:
-        try:
-            x = np.asarray(state.fit.sim[q], float)
-        except KeyError:
-            continue
+    for q, x in drivers_of(state.fit.sim, setup.probes).items():
         drivers[f"|{q}|"] = np.abs(x)
         drivers[f"|d{q}/dt|"] = np.abs(np.gradient(x, t))
     found = []

@@ -59,29 +59,23 @@ def _band(name: str, level: np.ndarray, r: np.ndarray, sigma: float) -> dict[str
     total = float(np.sum(np.clip(excess, 0.0, None)))
     if total <= 0.0:
         return None
-    best: tuple[int, int, float] | None = None
-    widest = int(BAND_COVER * BAND_BINS)
-    for width in range(1, widest + 1):
+    for width in range(1, int(BAND_COVER * BAND_BINS) + 1):
         runs = [(i, i + width, float(np.sum(excess[i:i + width])) / total)
                 for i in range(BAND_BINS - width + 1)]
         i, j, share = max(runs, key=lambda run: run[2])
         m = int(edges[j] - edges[i])
         if share >= BAND_SHARE and share * total > BAND_SIGMAS * sigma ** 2 * math.sqrt(2 * m):
-            best = (i, j, share)
-            break
-    if best is None:
-        return None
-    i, j, share = best
-    return {"signal": f"|{name}|", "low": float(level[order[edges[i]]]),
-            "high": float(level[order[edges[j] - 1]]), "share": min(share, 1.0),
-            "cover": float((edges[j] - edges[i]) / n)}
+            return {"signal": f"|{name}|", "low": float(level[order[edges[i]]]),
+                    "high": float(level[order[edges[j] - 1]]), "share": min(share, 1.0),
+                    "cover": m / n}
+    return None
 
 
-def band_text(band: Mapping[str, Any] | None) -> str:
-    """The band in words, or '' without one."""
+def band_text(band: Mapping[str, Any] | None, lead: str = "; ") -> str:
+    """The band in words after ``lead``, or '' without one."""
     if not band:
         return ""
-    return (f"; {band['share']:.0%} of its excess where {band['signal']} is "
+    return (f"{lead}{band['share']:.0%} of its excess where {band['signal']} is "
             f"{band['low']:.3g}-{band['high']:.3g} ({band['cover']:.0%} of the samples)")
 
 
