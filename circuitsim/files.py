@@ -76,6 +76,23 @@ def check_output(path: str | os.PathLike, inputs: Iterable[str | os.PathLike] = 
     except OSError as exc:
         raise _usage(f"{what} '{p}': cannot create the folder {folder}: {exc.strerror}") \
             from None
+    _try_folder(p, folder, what)
+
+
+def _try_folder(p: str, folder: str, what: str) -> None:
+    """Create and remove a file in ``folder``: the permission bits do not tell a read-only
+    file system, a full disk's quota or a folder such as /proc that takes no new files
+    (root passes every ``os.access``), and the output must fail now, not after the work."""
+    try:
+        fd, probe = tempfile.mkstemp(dir=folder, prefix=".circuitsim-probe-")
+    except OSError as exc:
+        # the folder exists (made above): ENOENT here is a folder that takes no files
+        hint = (" (this folder does not take new files)" if exc.errno == errno.ENOENT
+                else _HINTS.get(exc.errno or 0, ""))
+        raise _usage(f"{what} '{p}': cannot write into {folder}: "
+                     f"{exc.strerror or exc}{hint}; write elsewhere") from None
+    os.close(fd)
+    os.unlink(probe)
 
 
 #: What a plot may be written as, chosen by its file's extension

@@ -94,6 +94,10 @@ def _error(call) -> str:
     ("time,speed,i_total\n" + _rows(4) + "0.004,1e300,2\n" + _rows(5),
      "rec.csv:6", ["row 6, column 'speed' is 1e+300", "square overflows", "correct it"]),
     ("time,speed,i_total\n", "rec.csv:1", ["0 data rows", "at least 8"]),
+    ("time;speed;i_total\n" + _rows().replace(",", ";"), "rec.csv:1",
+     ["separates its columns by semicolons", "decimal points"]),
+    ("time\tspeed\ti_total\n" + _rows().replace(",", "\t"), "rec.csv:1",
+     ["separates its columns by tabs", "comma-separated"]),
 ])
 def test_record_errors_name_file_row_column_and_fix(tmp_path, text, where, words):
     p = _csv(tmp_path, text)

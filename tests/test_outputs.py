@@ -114,12 +114,16 @@ def test_read_only_folder_exits_2_before_the_run(rc_copy, tmp_path, capsys):
 
 
 @pytest.mark.skipif(not os.path.isdir("/sys/kernel"), reason="no sysfs on this system")
-def test_a_folder_that_refuses_files_exits_3(rc_copy, tmp_path, capsys):
-    # sysfs refuses new files even to root (the read-only-folder test above needs non-root)
-    assert main(["run", str(rc_copy), "--out", "/sys/kernel/circuitsim.csv", "--plot",
-                 str(tmp_path / "p.png")]) == 3
+def test_a_folder_that_refuses_files_exits_2_before_the_run(rc_copy, tmp_path, capsys):
+    # sysfs refuses new files even to root (the read-only-folder test above needs non-root):
+    # a file tried in the folder finds it before the run, so the plot is not written either
+    png = tmp_path / "p.png"
+    assert main(["run", str(rc_copy), "--plot", str(png), "--out",
+                 "/sys/kernel/circuitsim.csv"]) == 2
     err = capsys.readouterr().err
-    assert "cannot write '/sys/kernel/circuitsim.csv'" in err and "Traceback" not in err
+    assert "--out '/sys/kernel/circuitsim.csv': cannot write into /sys/kernel" in err
+    assert "Traceback" not in err and not png.exists()
+    assert not list(Path("/sys/kernel").glob(".circuitsim-probe-*"))
 
 
 @pytest.mark.skipif(not os.path.exists("/dev/full"), reason="no /dev/full on this system")

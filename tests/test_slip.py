@@ -168,3 +168,43 @@ def test_a_record_kept_whole_is_fitted_whole(motor):
                      for p in ("speed", "i")}, "long.csv")
     _, state = engine.fit_declared(cs.load(path), rec, [], None, None, 1e-8, 4, None)
     assert all(np.asarray(r).size == t.size for r in state.fit.residuals.values())
+
+
+@pytest.mark.parametrize(("current", "words"), [
+    (1080.0, "+8.0% off the factor 1000 (a column in milli-units"),
+    (3.7, "falls to"),
+])
+def test_a_probe_met_only_scaled_far_from_one_is_said_not_refused(motor, current, words):
+    """A column in mA whose sensor reads 8 % high is 1080 times the model's run: too far from
+    1000 for ``slip_of`` to refuse it, so ``scale_hints`` says it, naming the unit's factor
+    it lies near; a scale of 3.7 (a gear ratio the netlist lacks) is said without one."""
+    from circuitsim.loop.slip import scale_hints
+
+    _, model, run = motor
+    rec = _record(run, 1.0, current)
+    fit = fit_record(model, rec, [], reduce=False, refuse_slip=False)
+    assert slip_of(rec, fit.residuals, ["speed", "i"], model.meta["units"]) is None
+    (hint,) = scale_hints(rec, fit.residuals, ["speed", "i"], model.meta["units"])
+    assert hint.startswith(f"the record's i is {current:.4g} times") and words in hint
+    assert ("off the factor" in hint) == (current > 1000)
+
+
+@pytest.mark.parametrize("current", [1.0, 1.25, 0.6])
+def test_a_sensor_gain_is_no_scale_to_question(motor, current):
+    """Gains the catalog fits (a sensor 25 % high, 40 % low) ask nothing."""
+    from circuitsim.loop.slip import scale_hints
+
+    _, model, run = motor
+    rec = _record(run, 1.0, current)
+    fit = fit_record(model, rec, [], reduce=False, refuse_slip=False)
+    assert scale_hints(rec, fit.residuals, ["speed", "i"], model.meta["units"]) == []
+
+
+def test_the_diagnosis_says_a_probe_it_meets_only_scaled(motor):
+    """End to end: the report's hints carry the scale of a current logged in mA by a sensor
+    8 % high, whatever the search made of the rest."""
+    from circuitsim.loop.diagnose import diagnose
+
+    path, _, run = motor
+    d = diagnose(path, _record(run, 1.0, 1080.0), [])
+    assert any(h.startswith("the record's i is 1080 times") for h in d.hints)

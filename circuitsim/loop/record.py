@@ -130,6 +130,7 @@ def load_record(path: str | Path, probes: Sequence[str] | None = None, *,
     if all(_is_number(h) for h in header):
         raise DataError(f"data file '{p}' has no header row (the first row is numbers). Add "
                         f"a first row naming the columns: '{time},PROBE,...'", SourceLoc(p, 1))
+    _check_separator(p, header)
     _check_header(p, header, probes, inputs, time)
     factors = [_unit_factor(p, name, unit, units or {}, time) for name, unit in cells]
     arr = read_body(p, header, _row_error(p))
@@ -161,6 +162,20 @@ def _unit_factor(p: str, name: str, unit: str | None, units: Mapping[str, str],
     except ValueError as exc:
         raise DataError(f"{cell}: {exc}. Write the unit as in the netlist (e.g. A, V, rad/s, "
                         f"rpm), or leave the brackets out for SI", SourceLoc(p, 1)) from None
+
+
+def _check_separator(p: str, header: list[str]) -> None:
+    """A header of one cell that another separator splits (a spreadsheet's export in a
+    locale whose decimal mark is the comma): said as such, not as a missing time column.
+    Not read: its numbers may carry decimal commas, which a guess would misread."""
+    if len(header) != 1:
+        return
+    for sep, name in ((";", "semicolons"), ("\t", "tabs")):
+        if sep in header[0]:
+            raise DataError(f"data file '{p}' separates its columns by {name}, not commas "
+                            f"(header '{header[0]}'). Save it as a comma-separated file "
+                            f"with decimal points (a spreadsheet's 'CSV (comma delimited)' "
+                            f"in an English locale)", SourceLoc(p, 1))
 
 
 def _check_header(p: str, header: list[str], probes: Sequence[str] | None,

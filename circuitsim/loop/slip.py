@@ -47,6 +47,15 @@ SIGN = ("a sensor or a probe of the opposite sign: the sensor wired the other wa
         "signal, a record whose clock or phase is half a period off the model's")
 
 
+#: a record-to-model factor at least this far from 1 either way [-] (or of the other sign)
+#: that mends a probe's misfit is reported as a scale (``scale_hints``); a sensor's own gain
+#: error is a few percent, the catalog's gain at most tens of percent
+SCALE = 2.0
+#: how far [-, relative] a scale may lie from a unit's factor to be named near it: a column
+#: in mA from a sensor with its own 8 % gain error is 1080 times the model's
+SCALE_NEAR = 0.3
+
+
 def factors(unit: str) -> tuple[tuple[float, str], ...]:
     """The factors a column of a probe in ``unit`` may be off by, with what makes each: -1,
     a unit's factor, and a unit's factor with the sign reversed."""
@@ -106,3 +115,42 @@ def slip_of(record, residuals: Mapping[str, np.ndarray], probes: Sequence[str],
             "'speed [rpm]' or 'i [mA]', or its sign) or the probe's definition in the "
             "netlist -- or, where the model is truly off by this factor (a gear ratio it "
             "lacks), the netlist")
+
+
+def scale_hints(record, residuals: Mapping[str, np.ndarray], probes: Sequence[str],
+                units: Mapping[str, str]) -> list[str]:
+    """What to check when a probe of the record is the model's run scaled by a factor far
+    from 1 (``SCALE``, or of the other sign) that mends its misfit to ``GAIN`` of it or less,
+    but lies too far from a unit's factor for ``slip_of`` to refuse the record (a column in
+    mA whose sensor also reads 8 % high; a gear ratio the netlist lacks; a scale typed
+    wrong). Said, not refused: unlike a unit's exact factor, such a scale may be the model's
+    own. ``residuals``: record - model on the record's grid."""
+    out = []
+    for p in probes:
+        y = np.asarray(record[p], float)
+        r = np.asarray(residuals.get(p, ()), float)
+        if r.shape != y.shape:
+            continue
+        m = y - r
+        mm, left = float(m @ m), float(r @ r)
+        if not (mm > 0.0 and left > 0.0 and math.isfinite(mm) and math.isfinite(left)):
+            continue
+        g = float(y @ m) / mm
+        if not (g < 0.0 or abs(math.log(abs(g))) >= math.log(SCALE)) or g == 0.0:
+            continue
+        after = float(np.sum((y - g * m) ** 2))
+        if after > GAIN**2 * left:
+            continue
+        near = [(abs(math.log(g / f)), f, why) for f, why in factors(units.get(p, ""))
+                if g / f > 0 and abs(g / f - 1.0) <= SCALE_NEAR]
+        unit = ""
+        if near:
+            _, f, why = min(near)
+            unit = (f" It is {g / f - 1.0:+.1%} off the factor {f:.4g} ({why}): that slip "
+                    f"with a sensor's own gain error would read so.")
+        out.append(f"the record's {p} is {g:.4g} times the model's run; scaled by that, the "
+                   f"model's misfit of it falls to {math.sqrt(after / left):.1%}. No effect "
+                   f"of a motor scales a reading so.{unit} Check the column's unit and the "
+                   f"sensor's scale, or the netlist's values (a gear ratio, a motor "
+                   f"constant) that set the probe's size")
+    return out

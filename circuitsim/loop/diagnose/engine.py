@@ -1486,5 +1486,15 @@ def report(setup: Setup, state0: ModelState, state: ModelState, log: dict[str, A
     return Diagnosis(fit0.error, final.error, dict(fit0.errors), dict(final.errors), accepted,
                      log["indistinct"], rest, analysis0, analysis1, raw, fit0, final,
                      setup.record, dict(clock), log["rejected"], corrections,
-                     dict(setup.weights), hints=clock_hints(setup.record.t, final.error,
-                                                            _stop(state0.model)))
+                     dict(setup.weights), hints=_hints(setup, state0, state))
+
+
+def _hints(setup: Setup, state0: ModelState, state: ModelState) -> list[str]:
+    """What the user may check before reading the verdict: the record's clock and time
+    unit (``clock_hints``), a probe the final model meets only scaled (``scale_hints``)."""
+    from circuitsim.loop.slip import scale_hints
+
+    final = state.fit
+    return [*clock_hints(setup.record.t, final.error, _stop(state0.model)),
+            *scale_hints(setup.record, final.residuals, setup.probes,
+                         state.model.meta.get("units", {}))]

@@ -48,7 +48,7 @@ class Diagnosis:
     noise: dict[str, float] = field(default_factory=dict)
     reduction: Any = None  # loop.reduce.Reduction: the record as the diagnosis used it
     #: what the user may check before reading the verdict (a record's clock that starts long
-    #: after the netlist's: ``engine._hints``)
+    #: after the netlist's, a probe the model meets only scaled: ``engine._hints``)
     hints: list[str] = field(default_factory=list)
 
     def as_dict(self) -> dict[str, Any]:
