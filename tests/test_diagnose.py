@@ -1747,7 +1747,7 @@ def test_clock_hint_only_for_a_gross_misfit_on_a_late_clock():
     """The report asks to check the record's clock only when the final model still misses it
     by at least GROSS_MISFIT of its spread AND the record starts later than its own length;
     a good fit on a late clock, or a gross misfit on a clock from 0, gets no such hint."""
-    from circuitsim.loop.diagnose.result import GROSS_MISFIT, clock_hints
+    from circuitsim.loop.slip import GROSS_MISFIT, clock_hints
 
     late = 5.0 + np.linspace(0.0, 0.4, 101)
     early = np.linspace(0.0, 0.4, 101)

@@ -208,3 +208,38 @@ def test_the_diagnosis_says_a_probe_it_meets_only_scaled(motor):
     path, _, run = motor
     d = diagnose(path, _record(run, 1.0, 1080.0), [])
     assert any(h.startswith("the record's i is 1080 times") for h in d.hints)
+
+
+def test_a_fit_warns_of_a_probe_it_meets_only_scaled_and_of_a_late_clock(motor):
+    """``fit_record`` (the ``fit`` command) says what ``diagnose`` says: a current logged in
+    mA by a sensor 8 % high, and a record whose clock starts 1 s after its own start."""
+    _, model, run = motor
+    fit = fit_record(model, _record(run, 1.0, 1080.0), [], reduce=False)
+    assert any(w.startswith("the record's i is 1080 times") for w in fit.warnings)
+    rec = _record(run)
+    late = Record(rec.t + 1.0, {p: rec[p] for p in rec.names}, "late.csv")
+    fit = fit_record(model, late, [], reduce=False)
+    assert any("starts at t = 1 s" in w and "subtract 1 s" in w for w in fit.warnings)
+    assert not fit_record(model, rec, [], reduce=False).warnings
+
+
+def test_an_undetermined_parameter_reads_as_such_in_the_fit_table():
+    """A standard error of ten times the estimate or more is '>1000%', in its own column."""
+    import dataclasses as dc
+
+    from circuitsim.loop.fit import format_result
+
+    fit = _fit_stub()
+    text = format_result(dc.replace(fit, stderr={"R": 1.0587e7}))
+    row = next(line for line in text.splitlines() if line.startswith("R "))
+    assert row.split()[-2:] == [">1000%", "ohm"] and "1.0587e+07" in row.split()
+
+
+def _fit_stub():
+    from circuitsim.loop.fit import FitResult
+
+    return FitResult(free=("R",), start={"R": 1.2}, estimate={"R": 7766.7}, stderr={"R": 1.0},
+                     correlation=np.eye(1), condition=1.0, identifiable=True, warnings=(),
+                     kind="record", success=True, message="", nfev=3, stages=(),
+                     units={"R": "ohm"}, params={"R": 7766.7}, errors={"i": 0.1},
+                     residuals={"i": np.zeros(3)})

@@ -941,7 +941,9 @@ def fit_record(model, record: Record, free: Sequence[str], *,
     reduce : first bring a long, oversampled record to the resolution its content needs
         (``loop.reduce.reduce_record``). progress : called with a line at each simulation.
     refuse_slip : raise DataError when the record matches the fitted model only after a
-        unit's factor or a sign (``loop.slip``): a column in the wrong unit, a reversed sensor.
+        unit's factor or a sign (``loop.slip``): a column in the wrong unit, a reversed sensor;
+        and add to the warnings what ``slip.hints`` asks to check (a late clock, a record in
+        ms, a probe met only scaled).
 
     Returns
     -------
@@ -961,6 +963,9 @@ def fit_record(model, record: Record, free: Sequence[str], *,
     result = prob.result(z, step, ok, msg, nfev, stages)
     if refuse_slip:
         slip.refuse(model, record, result.residuals)
+        # said, not refused: a clock or a scale that may be the user's or the model's
+        result = dataclasses.replace(result, warnings=(
+            *result.warnings, *slip.hints(model, record, result.residuals, result.error)))
     return dataclasses.replace(result, reduction=reduction)
 
 
@@ -1227,7 +1232,10 @@ def format_result(result: FitResult, title: str = "") -> str:
                      f"{'rel.':>9}  unit")
         for n in result.free:
             est, se = result.estimate[n], result.stderr[n]
-            rel = f"{abs(se / est):8.2%}" if math.isfinite(se) and est else "       -"
+            ratio = abs(se / est) if math.isfinite(se) and est else math.nan
+            # a standard error of ten times the estimate or more determines nothing
+            rel = ("-" if not math.isfinite(ratio) else
+                   f"{ratio:.2%}" if ratio < 10 else ">1000%")
             se_s = f"{se:14.5g}" if math.isfinite(se) else f"{'(see warning)':>14}"
             lines.append(f"{n:<16}{result.start[n]:>14.6g}{est:>16.8g}{se_s}{rel:>9}  "
                          f"{result.units.get(n, '')}")

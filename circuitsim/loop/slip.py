@@ -154,3 +154,58 @@ def scale_hints(record, residuals: Mapping[str, np.ndarray], probes: Sequence[st
                    f"sensor's scale, or the netlist's values (a gear ratio, a motor "
                    f"constant) that set the probe's size")
     return out
+
+
+#: a final misfit [of the probes' spread] beyond which the record's clock is questioned when
+#: it starts long after the netlist's (``clock_hints``): above what a good model leaves on a
+#: real log (the ODrive's cogging, 0.36 after the effects), far above a synthetic record's
+GROSS_MISFIT = 0.5
+
+
+#: how many times the netlist's own analysis a record must span before a gross misfit
+#: questions its time unit (``clock_hints``) [-]: a record in ms read as s spans 1000 times it
+LONG_SPAN = 100.0
+
+
+def clock_hints(t: np.ndarray, error: float, stop: float | None = None) -> list[str]:
+    """What to check when the model, effects and all, still misses the record grossly
+    (``GROSS_MISFIT``): a record's clock that starts later than its own length (the
+    netlist's inputs act from t = 0, so a logger's clock that did not start with the
+    experiment puts every step of the model at the wrong time, and no effect can mend that),
+    and a record that spans ``LONG_SPAN`` times the netlist's analysis ``stop`` [s] or more
+    (a time column in ms or us read as s)."""
+    t0, length = float(t[0]), float(t[-1] - t[0])
+    if not error >= GROSS_MISFIT:  # a NaN error (every probe flat) asks nothing
+        return []
+    out = []
+    if t0 > length:
+        out.append(f"the model still misses the record by {error:.0%} of its spread, and the "
+                   f"record starts at t = {t0:.6g} s, after {t0 / length:.3g} times its own "
+                   f"length: the model is simulated from t = 0 with the netlist's inputs. If "
+                   f"the record's clock did not start with the netlist's, shift its time "
+                   f"column (subtract {t0:.6g} s) or move the inputs' times")
+    elif stop and stop > 0 and length >= LONG_SPAN * stop:
+        out.append(f"the model still misses the record by {error:.0%} of its spread, and the "
+                   f"record spans {length:.6g} s, {length / stop:.3g} times the netlist's "
+                   f"analysis (stop {stop:.6g} s). If its time column is in ms or us, say so "
+                   f"in its header ('time [ms]')")
+    return out
+
+
+def stop_of(model) -> float | None:
+    """The analysis stop [s] the netlist states, None when it states none (the default 0.1 s
+    says nothing of the record the author had in mind)."""
+    net = getattr(model, "netlist", None)
+    raw = getattr(net, "raw", None)
+    if raw is None or "stop" not in (getattr(raw, "analysis", None) or {}):
+        return None
+    stop = float(net.analysis.stop)
+    return stop if stop > 0 else None
+
+
+def hints(model, record, residuals: Mapping[str, np.ndarray], error: float) -> list[str]:
+    """What the user may check before reading a fit or a diagnosis of ``record``: its clock
+    and time unit when the ``model``'s misfit ``error`` is gross (``clock_hints``), and a
+    probe the model meets only scaled (``scale_hints``); ``residuals``: record - model."""
+    return [*clock_hints(np.asarray(record.t, float), error, stop_of(model)),
+            *scale_hints(record, residuals, list(residuals), model.meta.get("units", {}))]

@@ -70,7 +70,7 @@ from circuitsim.loop.diagnose.residual import (
     noise_sigma,
     spread,
 )
-from circuitsim.loop.diagnose.result import Accepted, Diagnosis, DiagnosisError, clock_hints
+from circuitsim.loop.diagnose.result import Accepted, Diagnosis, DiagnosisError
 from circuitsim.loop.diagnose.scan import orders_by_gain, patched_raw
 from circuitsim.loop.diagnose.screen import (
     Proposal,
@@ -209,17 +209,6 @@ def _first_run(setup: Setup) -> Callable[[str], None]:
                       f"switching events (an averaged bridge), is faster")
 
     return hear
-
-
-def _stop(model) -> float | None:
-    """The analysis stop [s] the netlist states, None when it states none (the default 0.1 s
-    says nothing of the record the author had in mind)."""
-    net = getattr(model, "netlist", None)
-    raw = getattr(net, "raw", None)
-    if raw is None or "stop" not in (getattr(raw, "analysis", None) or {}):
-        return None
-    stop = float(net.analysis.stop)
-    return stop if stop > 0 else None
 
 
 def _bent_raws(raw, chosen: Sequence[Choice]) -> list:
@@ -1486,15 +1475,14 @@ def report(setup: Setup, state0: ModelState, state: ModelState, log: dict[str, A
     return Diagnosis(fit0.error, final.error, dict(fit0.errors), dict(final.errors), accepted,
                      log["indistinct"], rest, analysis0, analysis1, raw, fit0, final,
                      setup.record, dict(clock), log["rejected"], corrections,
-                     dict(setup.weights), hints=_hints(setup, state0, state))
+                     dict(setup.weights), hints=_hints(setup, state))
 
 
-def _hints(setup: Setup, state0: ModelState, state: ModelState) -> list[str]:
-    """What the user may check before reading the verdict: the record's clock and time
-    unit (``clock_hints``), a probe the final model meets only scaled (``scale_hints``)."""
-    from circuitsim.loop.slip import scale_hints
+def _hints(setup: Setup, state: ModelState) -> list[str]:
+    """What the user may check before reading the verdict (``slip.hints``): the record's
+    clock and time unit, a probe the final model meets only scaled."""
+    from circuitsim.loop.slip import hints
 
     final = state.fit
-    return [*clock_hints(setup.record.t, final.error, _stop(state0.model)),
-            *scale_hints(setup.record, final.residuals, setup.probes,
-                         state.model.meta.get("units", {}))]
+    return hints(state.model, setup.record, {p: final.residuals[p] for p in setup.probes},
+                 final.error)

@@ -124,42 +124,6 @@ class Diagnosis:
                 f"by the spread this error is measured in")
 
 
-#: a final misfit [of the probes' spread] beyond which the record's clock is questioned when
-#: it starts long after the netlist's (``clock_hints``): above what a good model leaves on a
-#: real log (the ODrive's cogging, 0.36 after the effects), far above a synthetic record's
-GROSS_MISFIT = 0.5
-
-
-#: how many times the netlist's own analysis a record must span before a gross misfit
-#: questions its time unit (``clock_hints``) [-]: a record in ms read as s spans 1000 times it
-LONG_SPAN = 100.0
-
-
-def clock_hints(t: np.ndarray, error: float, stop: float | None = None) -> list[str]:
-    """What to check when the model, effects and all, still misses the record grossly
-    (``GROSS_MISFIT``): a record's clock that starts later than its own length (the
-    netlist's inputs act from t = 0, so a logger's clock that did not start with the
-    experiment puts every step of the model at the wrong time, and no effect can mend that),
-    and a record that spans ``LONG_SPAN`` times the netlist's analysis ``stop`` [s] or more
-    (a time column in ms or us read as s)."""
-    t0, length = float(t[0]), float(t[-1] - t[0])
-    if not error >= GROSS_MISFIT:  # a NaN error (every probe flat) asks nothing
-        return []
-    out = []
-    if t0 > length:
-        out.append(f"the model still misses the record by {error:.0%} of its spread, and the "
-                   f"record starts at t = {t0:.6g} s, after {t0 / length:.3g} times its own "
-                   f"length: the model is simulated from t = 0 with the netlist's inputs. If "
-                   f"the record's clock did not start with the netlist's, shift its time "
-                   f"column (subtract {t0:.6g} s) or move the inputs' times")
-    elif stop and stop > 0 and length >= LONG_SPAN * stop:
-        out.append(f"the model still misses the record by {error:.0%} of its spread, and the "
-                   f"record spans {length:.6g} s, {length / stop:.3g} times the netlist's "
-                   f"analysis (stop {stop:.6g} s). If its time column is in ms or us, say so "
-                   f"in its header ('time [ms]')")
-    return out
-
-
 def _caveat(a: Accepted) -> str:
     """An accepted effect's caveats: its law test when its bend is significant but no
     verdict, a shape the record does not determine."""
