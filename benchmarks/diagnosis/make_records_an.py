@@ -21,7 +21,10 @@ mean of 4 ms) with a few samples dropped. Each uneven record has its own times (
 seed), and the motor is simulated at those very times (``t_eval``), never interpolated.
 truth.json is merged under an exclusive lock (recordkit.merge). An outside record whose
 imprint the catalog's effects jointly leave less than OUTSIDE_LEFT of is reported (it would
-not be outside in effect). Nobody ran the diagnosis on these records.
+not be outside in effect). A catalog or two-effect record's ``location_sigma`` covers every
+pair of places an effect has an equal at: rotor, hub and roller for a torque effect, Jr,
+Jw and Jf for an inertia (``PLACES``, ``INERTIAS``; first only across the tyre). Nobody
+ran the diagnosis on these records.
 """
 
 from __future__ import annotations
@@ -527,17 +530,22 @@ class OneProbe(recordkit.Plumbing):
         return entry
 
 
-#: across the tyre's compliance (a spring and a damper, 1:1 in the reflected frame): the body
-#: an effect on each is compared with, and the factor its size takes there per kind (the
-#: wheel and the roller turn at one mean speed)
-ACROSS = {"roller": ("hub", {"coul": 1.0, "offset": 1.0, "visc": 1.0, "cog": 1.0}),
-          "hub": ("roller", {"coul": 1.0, "offset": 1.0, "visc": 1.0, "cog": 1.0})}
+#: every place a torque effect may sit at, with its gear factor (its speed over the hub's:
+#: the rotor turns N times the wheel, the roller at the wheel's mean speed across the tyre,
+#: 1:1 in the reflected frame), and every inertia with its parameter and factor
+#: (``recordkit.places_moved``). Rotor-hub is exact (the rigid planetary gear); a pair with
+#: the roller (or Jf) lies across the tyre's compliance. The truth first compared each torque
+#: effect only across the tyre; after the set had been run, every pair is compared, inertias
+#: too, as for fresh42 (the README says which verdicts this moved).
+PLACES = {"rotor": N, "hub": 1.0, "roller": 1.0}
+INERTIAS = {"Jr": ("Jm", N), "Jw": ("Jw", 1.0), "Jf": ("Jf", 1.0)}
 
 
 def _location_entry(s: dict[str, Any]) -> dict[str, Any]:
-    """A catalog or two-effect record's ``location_sigma`` across the tyre's compliance
-    (``recordkit.location_entry``), after a marginal record's scaling."""
-    return recordkit.location_entry(s, ACROSS, times(s), imprints(s), sim)
+    """A catalog or two-effect record's ``location_sigma`` over every pair of places, after
+    a marginal record's scaling (``recordkit.places_entry``)."""
+    return recordkit.places_entry(s, times(s), imprints(s), sim, PLACES, INERTIAS, P,
+                                  ("roller", "Jf"))
 
 
 #: the plumbing of this set: truth entries, marginal scaling, the catalog's imprints an

@@ -23,7 +23,8 @@ seed), and the motor is simulated at those very times (``t_eval``), never interp
 truth.json is merged under an exclusive lock (recordkit.merge). An outside record whose
 imprint the catalog's effects jointly leave less than OUTSIDE_LEFT of is reported (it would
 not be outside in effect). A catalog or two-effect record's ``location_sigma`` covers every
-effect that has an equal across the belt, the reel's inertia included (``ACROSS``). Nobody
+pair of places an effect has an equal at: rotor, hub and reel for a torque effect,
+Jr, Jh and Jc for an inertia (``PLACES``, ``INERTIAS``; first only across the belt). Nobody
 ran the diagnosis on these records.
 """
 
@@ -517,67 +518,22 @@ class OneProbe(recordkit.Plumbing):
         return entry
 
 
-#: across the belt's compliance (a spring and a damper, 1:1): the body (or the inertia) an
-#: effect on each is compared with, and the factor its size takes there per kind. The hub and
-#: the reel turn at one mean speed, so a torque effect keeps its size (a Stribeck peak its
-#: speed scale too); an inertia ("p") is moved as the same added inertia [kg m^2] on the other
-#: side (the factor multiplies the inertia added: 1 for a 1:1 belt; a belt of ratio r would
-#: give r^2). A record at these sample rates may not tell an added inertia on the reel from
-#: one on the hub.
-TORQUE_KINDS = {"coul": 1.0, "offset": 1.0, "visc": 1.0, "cog": 1.0, "stribeck": 1.0}
-ACROSS = {"reel": ("hub", TORQUE_KINDS), "hub": ("reel", TORQUE_KINDS),
-          "Jc": ("Jh", {"p": 1.0}), "Jh": ("Jc", {"p": 1.0})}
-#: an inertia's exact equal through the rigid gear: the hub's inertia Jh is the rotor's
-#: inertia (the component Jr, the parameter Jm) at 1/N^2 of the inertia added; an inertia
-#: moved across the belt to Jh is listed there too (the same imprint: one rigid body)
-RIGID = {"Jh": ("Jr", "Jm", 1.0 / N ** 2)}
-
-
-def moved(frag: dict, target: str) -> list[tuple[str, list[dict]]]:
-    """The other side of ACROSS from ``target``, and the columns' fx of the effect ``frag``
-    moved there at its equivalent size (``recordkit.moved`` for the torque kinds it knows;
-    a Stribeck peak and an inertia here; an inertia also at its exact equal on the rotor,
-    RIGID): one (other, fxs) pair, or two for an inertia moved to Jh, or none when the
-    effect has no equal there."""
-    other, factor = ACROSS[target]
-    (kind, where), = frag.items()
-    if kind not in factor:
-        return []
-    value = where[target]
-    if kind == "p":
-        added = (float(value) - P[target]) * factor[kind]
-        out = [(other, [{"p": {other: P[other] + added}}])]
-        if other in RIGID:
-            name, param, scale = RIGID[other]
-            out.append((name, [{"p": {param: P[param] + added * scale}}]))
-        return out
-    if kind == "stribeck":
-        peak, ws = value
-        return [(other, [{"stribeck": {other: (peak * factor[kind], ws)}}])]
-    there = recordkit.moved(frag, target, {target: (other, factor)})
-    return [] if there is None else [there]
+#: every place a torque effect may sit at, with its gear factor (its speed over the hub's:
+#: the rotor turns N times the hub, the reel at the hub's mean speed across the 1:1 belt),
+#: and every inertia with its parameter and factor (``recordkit.places_moved``). Rotor-hub
+#: is exact (the rigid gear); a pair with the reel (or Jc) lies across the belt's
+#: compliance. The truth first compared each effect only across the belt (with its rigid
+#: twin where that landed on the hub); after the set had been run, every pair is compared,
+#: as for fresh42 (the README says which verdicts this moved).
+PLACES = {"rotor": N, "hub": 1.0, "reel": 1.0}
+INERTIAS = {"Jr": ("Jm", N), "Jh": ("Jh", 1.0), "Jc": ("Jc", 1.0)}
 
 
 def _location_entry(s: dict[str, Any]) -> dict[str, Any]:
-    """A catalog or two-effect record's ``location_sigma`` across the belt, after a marginal
-    record's scaling: ``recordkit.location_entry``'s rule (each truth effect's own clean
-    imprint, run alone on the record's times, against the same effect at its equivalent size
-    on the other side, best-scaled), with ``moved`` for its equals."""
-    if s["class"] not in ("catalog", "two"):
-        return {}
-    regime, t, imp, out = s["regime"], times(s), imprints(s), []
-    for frag, e in s["parts"]:
-        if e["target"] not in ACROSS or len(frag) != 1:
-            continue
-        y = None
-        for other, fxs in moved(frag, e["target"]):
-            if y is None:
-                y = imp.imprint(regime, sim(regime, t, frag))
-            cols = np.column_stack([imp.imprint(regime, sim(regime, t, fx)) for fx in fxs])
-            out.append({"effect": e["effect"], "target": e["target"], "other": other,
-                        "sigma": recordkit.left(y, cols),
-                        "imprint_sigma": float(np.linalg.norm(y))})
-    return {"location_sigma": out}
+    """A catalog or two-effect record's ``location_sigma`` over every pair of places, after
+    a marginal record's scaling (``recordkit.places_entry``)."""
+    return recordkit.places_entry(s, times(s), imprints(s), sim, PLACES, INERTIAS, P,
+                                  ("reel", "Jc"))
 
 
 #: the plumbing of this set: truth entries, marginal scaling, the catalog's imprints an

@@ -22,8 +22,8 @@ seed), and the motor is simulated at those very times (``t_eval``), never interp
 truth.json is merged under an exclusive lock (recordkit.merge). An outside record whose
 imprint the catalog's effects jointly leave less than OUTSIDE_LEFT of is reported (it would
 not be outside in effect). A catalog or two-effect record's ``location_sigma`` covers every
-effect that has an equal across the band, the flyer's inertia included (``ACROSS``), and,
-where that equal lands on the hub, its rigid twin on the rotor too (``RIGID``). Nobody ran
+pair of places an effect has an equal at: rotor, hub and flyer for a torque effect,
+Jr, Jh and Jc for an inertia (``PLACES``, ``INERTIAS``; first only across the band). Nobody ran
 the diagnosis on these records.
 """
 
@@ -506,108 +506,22 @@ class OneProbe(recordkit.Plumbing):
         return entry
 
 
-#: across the band's compliance (a spring and a damper, 1:1): the body (or the inertia) an
-#: effect on each is compared with, and the factor its size takes there per kind. The hub and
-#: the flyer turn at one mean speed, so a torque effect keeps its size (a Stribeck peak its
-#: speed scale too); an inertia ("p") is moved as the same added inertia [kg m^2] on the other
-#: side (the factor multiplies the inertia added: 1 for a 1:1 band). A record at these sample
-#: rates may not tell an added inertia on the flyer from one on the hub.
-TORQUE_KINDS = {"coul": 1.0, "offset": 1.0, "visc": 1.0, "cog": 1.0, "stribeck": 1.0}
-ACROSS = {"flyer": ("hub", TORQUE_KINDS), "hub": ("flyer", TORQUE_KINDS),
-          "Jc": ("Jh", {"p": 1.0}), "Jh": ("Jc", {"p": 1.0})}
-#: an inertia's exact equal through the rigid gear: the hub's inertia Jh is the rotor's
-#: inertia (the component Jr, the parameter Jm) at 1/N^2 of the inertia added; an inertia
-#: moved across the band to Jh is listed there too (the same imprint: one rigid body)
-RIGID = {"Jh": ("Jr", "Jm", 1.0 / N ** 2)}
-#: a torque effect's exact equal through the rigid gear: one on the hub is, on the rotor, a
-#: dry friction or an offset of 1/N of it, a viscous friction of 1/N^2, a Stribeck peak of
-#: 1/N at N times the speed scale, a cogging of order k/N (when whole) at 1/N of the
-#: amplitude; a torque effect moved across the band to the hub is listed there too
-RIGID_TORQUE = {"hub": ("rotor", {"coul": 1.0 / N, "offset": 1.0 / N, "visc": 1.0 / N ** 2,
-                                  "stribeck": 1.0 / N, "cog": 1.0 / N})}
-
-
-def _twin(kind: str, value: Any, body: str) -> tuple[str, list[dict]] | None:
-    """The rigid twin on the rotor of a torque effect ``kind`` of size ``value`` on ``body``
-    (RIGID_TORQUE): its columns' fx, or None (no twin, or a cogging order not a whole
-    multiple of N)."""
-    if body not in RIGID_TORQUE:
-        return None
-    name, factor = RIGID_TORQUE[body]
-    if kind not in factor:
-        return None
-    f = factor[kind]
-    if kind == "stribeck":
-        peak, ws = value
-        return name, [{"stribeck": {name: (peak * f, ws * N)}}]
-    if kind == "cog":
-        terms = []
-        for k, a, b in value:
-            if round(k) % round(N):
-                return None
-            terms.append((round(k) // round(N), math.hypot(a, b) * f))
-        return name, [{"cog": {name: [(k, amp * c, amp * d) for k, amp in terms]}}
-                      for c, d in ((1.0, 0.0), (0.0, 1.0))]
-    return name, [{kind: {name: value * f}}]
-
-
-def moved(frag: dict, target: str) -> list[tuple[str, list[dict]]]:
-    """The other side of ACROSS from ``target``, and the columns' fx of the effect ``frag``
-    moved there at its equivalent size (``recordkit.moved`` for the torque kinds it knows;
-    a Stribeck peak and an inertia here); where the other side has a rigid twin (RIGID for an
-    inertia moved to Jh, RIGID_TORQUE for a torque effect moved to the hub) the twin at its
-    equal size too: one (other, fxs) pair, or two, or none when the effect has no equal
-    there."""
-    other, factor = ACROSS[target]
-    (kind, where), = frag.items()
-    if kind not in factor:
-        return []
-    value = where[target]
-    if kind == "p":
-        added = (float(value) - P[target]) * factor[kind]
-        out = [(other, [{"p": {other: P[other] + added}}])]
-        if other in RIGID:
-            name, param, scale = RIGID[other]
-            out.append((name, [{"p": {param: P[param] + added * scale}}]))
-        return out
-    if kind == "stribeck":
-        peak, ws = value
-        there: tuple[str, list[dict]] | None = (
-            other, [{"stribeck": {other: (peak * factor[kind], ws)}}])
-        value_there: Any = (peak * factor[kind], ws)
-    else:
-        there = recordkit.moved(frag, target, {target: (other, factor)})
-        if there is None:
-            return []
-        value_there = there[1][0][kind][other] if kind != "cog" else \
-            [(k, a * factor[kind], b * factor[kind]) for k, a, b in value]
-    out = [there]
-    twin = _twin(kind, value_there, other)
-    if twin is not None:
-        out.append(twin)
-    return out
+#: every place a torque effect may sit at, with its gear factor (its speed over the hub's:
+#: the rotor turns N times the hub, the flyer at the hub's mean speed across the 1:1 band),
+#: and every inertia with its parameter and factor (``recordkit.places_moved``). Rotor-hub
+#: is exact (the rigid gear); a pair with the flyer (or Jc) lies across the band's
+#: compliance. The truth first compared each effect only across the band (with its rigid
+#: twin where that landed on the hub); after the set had been run, every pair is compared,
+#: as for fresh42 (the README says which verdicts this moved).
+PLACES = {"rotor": N, "hub": 1.0, "flyer": 1.0}
+INERTIAS = {"Jr": ("Jm", N), "Jh": ("Jh", 1.0), "Jc": ("Jc", 1.0)}
 
 
 def _location_entry(s: dict[str, Any]) -> dict[str, Any]:
-    """A catalog or two-effect record's ``location_sigma`` across the band, after a marginal
-    record's scaling: ``recordkit.location_entry``'s rule (each truth effect's own clean
-    imprint, run alone on the record's times, against the same effect at its equivalent size
-    on the other side, best-scaled), with ``moved`` for its equals."""
-    if s["class"] not in ("catalog", "two"):
-        return {}
-    regime, t, imp, out = s["regime"], times(s), imprints(s), []
-    for frag, e in s["parts"]:
-        if e["target"] not in ACROSS or len(frag) != 1:
-            continue
-        y = None
-        for other, fxs in moved(frag, e["target"]):
-            if y is None:
-                y = imp.imprint(regime, sim(regime, t, frag))
-            cols = np.column_stack([imp.imprint(regime, sim(regime, t, fx)) for fx in fxs])
-            out.append({"effect": e["effect"], "target": e["target"], "other": other,
-                        "sigma": recordkit.left(y, cols),
-                        "imprint_sigma": float(np.linalg.norm(y))})
-    return {"location_sigma": out}
+    """A catalog or two-effect record's ``location_sigma`` over every pair of places, after
+    a marginal record's scaling (``recordkit.places_entry``)."""
+    return recordkit.places_entry(s, times(s), imprints(s), sim, PLACES, INERTIAS, P,
+                                  ("flyer", "Jc"))
 
 
 #: the plumbing of this set: truth entries, marginal scaling, the catalog's imprints an

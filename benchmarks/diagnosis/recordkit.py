@@ -502,3 +502,86 @@ def main(argv: list[str] | None, doc: str | None,
     merge(entries)
     print(f"{len(entries)} records in {time.perf_counter() - t_all:.1f} s")
     return 0
+
+
+#: a torque effect's kinds that have an equal at another place of a shaft train
+TORQUE_KINDS = ("coul", "offset", "visc", "stribeck", "cog")
+
+
+def torque_at(kind: str, value: Any, ga: float, gb: float, other: str) -> list[dict] | None:
+    """The columns' fx of a torque effect ``kind`` of size ``value`` at a place of gear
+    factor ``ga`` (its speed over a reference shaft's), moved to ``other`` of factor ``gb``:
+    a dry friction or an offset of ga/gb of it, a viscous friction of (ga/gb)^2, a Stribeck
+    peak of ga/gb at gb/ga times its speed scale, a cogging (or unbalance) of order k ga/gb
+    at ga/gb of its amplitude (two columns, a sine and a cosine, so that the phase is
+    fitted); None when the order is not whole there."""
+    f = ga / gb
+    if kind == "visc":
+        return [{kind: {other: value * f ** 2}}]
+    if kind == "stribeck":
+        peak, ws = value
+        return [{kind: {other: (peak * f, ws / f)}}]
+    if kind == "cog":
+        terms = []
+        for k, a, b in value:
+            order = k * f
+            if abs(order - round(order)) > 1e-9:
+                return None
+            terms.append((round(order), math.hypot(a, b) * f))
+        return [{kind: {other: [(k, amp * c, amp * d) for k, amp in terms]}}
+                for c, d in ((1.0, 0.0), (0.0, 1.0))]
+    return [{kind: {other: value * f}}]
+
+
+def places_moved(frag: dict, target: str, places: Mapping[str, float],
+                 inertias: Mapping[str, tuple[str, float]], params: Mapping[str, float]
+                 ) -> list[tuple[str, list[dict]]]:
+    """Every other place of ``target``'s group -- ``places`` {body: gear factor} for a
+    torque effect, ``inertias`` {component: (parameter, gear factor)} for an added inertia
+    (dJ at factor ga is dJ (ga/gb)^2 at gb; ``params`` the declared values) -- and the
+    columns' fx of the effect ``frag`` moved there at its equivalent size: (other, fxs)
+    pairs, none where the effect has no equal."""
+    (kind, where), = frag.items()
+    out: list[tuple[str, list[dict]]] = []
+    if kind == "p" and target in inertias:
+        param, ga = inertias[target]
+        added = float(where[param]) - params[param]
+        for other, (oparam, gb) in inertias.items():
+            if other != target:
+                out.append((other, [{"p": {oparam: params[oparam] + added * (ga / gb) ** 2}}]))
+        return out
+    if kind not in TORQUE_KINDS or target not in places:
+        return out
+    for other, gb in places.items():
+        if other != target:
+            fxs = torque_at(kind, where[target], places[target], gb, other)
+            if fxs is not None:
+                out.append((other, fxs))
+    return out
+
+
+def places_entry(s: dict[str, Any], t: np.ndarray, imp: Imprints,
+                 sim: Callable[[str, np.ndarray, dict], Mapping[str, np.ndarray]],
+                 places: Mapping[str, float], inertias: Mapping[str, tuple[str, float]],
+                 params: Mapping[str, float], beyond: Iterable[str]) -> dict[str, Any]:
+    """A catalog or two-effect record's ``location_sigma`` over every pair of places
+    (``places_moved``): each truth effect's own clean imprint, run alone on the record's
+    times, against the same effect at its equivalent size at each other place, best-scaled
+    [white sigma]; ``across`` is true for a pair one of whose places is in ``beyond`` (the
+    far side of the train's compliance), false for an exact twin through a rigid gear."""
+    if s["class"] not in ("catalog", "two"):
+        return {}
+    far, out = set(beyond), []
+    for frag, e in s["parts"]:
+        if (e["target"] not in places and e["target"] not in inertias) or len(frag) != 1:
+            continue
+        y = None
+        for other, fxs in places_moved(frag, e["target"], places, inertias, params):
+            if y is None:
+                y = imp.imprint(s["regime"], sim(s["regime"], t, frag))
+            cols = np.column_stack([imp.imprint(s["regime"], sim(s["regime"], t, fx))
+                                    for fx in fxs])
+            out.append({"effect": e["effect"], "target": e["target"], "other": other,
+                        "across": bool(far & {e["target"], other}), "sigma": left(y, cols),
+                        "imprint_sigma": float(np.linalg.norm(y))})
+    return {"location_sigma": out}

@@ -228,9 +228,11 @@ def _tie(entry: dict, res: dict, extra: list[dict], matches: list) -> bool:
     """A truth the record cannot tell from what the report accepted instead, the report
     naming the two as indistinct: either a marginal truth within TIE_SIGMA of the one other
     effect accepted (its kind: ``separation_sigma``), or each truth effect missed accepted
-    on the other side of a coupling, within TIE_SIGMA of its own place (``location_sigma``);
-    both computed on the scipy models. Counted apart from "right" (it is not a hit), and not
-    as "wrong"."""
+    on the other side of a coupling, within TIE_SIGMA of its own place (``location_sigma``),
+    the report naming it beside that place or one the truth accepts as its equal (a rigid
+    twin, ``also_accept``), a truth that corrects a declared value among the report's
+    corrections; both computed on the scipy models. Counted apart from "right" (it is not a
+    hit), and not as "wrong"."""
     def named(a: str, b: str) -> bool:
         return any(a in text and b in text for text in res.get("indistinct") or [])
 
@@ -244,11 +246,22 @@ def _tie(entry: dict, res: dict, extra: list[dict], matches: list) -> bool:
             if x["sigma"] < TIE_SIGMA}
     found = {m["truth"] for m in matches}
     missed = [e for e in entry["effects"] if e["effect"] not in found]
-    if not missed or len(missed) != len(extra):
+    # a correction's truth is looked for among the report's corrections (an inertia's put on
+    # its equal), the others among its new effects
+    if not missed or sum(not e.get("correction") for e in missed) != len(extra):
         return False
-    return all(any(a["effect"] == e["effect"] and (e["effect"], e["target"], a["target"]) in near
-                   and named(f"{e['effect']}:{a['target']}", f"{e['effect']}:{e['target']}")
-                   for a in extra) for e in missed)
+    fixes = res.get("corrections") or []
+
+    def places(e: dict) -> list[str]:
+        # the truth's own place and the places it accepts as its equals (a rigid twin)
+        return [e["target"], *(t for lb in e.get("also_accept", [])
+                               if lb["effect"] == e["effect"] for t in lb.get("targets") or [])]
+
+    return all(any(a["effect"] == e["effect"]
+                   and any((e["effect"], t, a["target"]) in near for t in places(e))
+                   and any(named(f"{e['effect']}:{a['target']}", f"{e['effect']}:{t}")
+                           for t in places(e))
+                   for a in (fixes if e.get("correction") else extra)) for e in missed)
 
 
 def score(entry: dict, res: dict | None) -> dict:
