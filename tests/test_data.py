@@ -235,3 +235,9 @@ def test_feature_label():
 
     f = Feature("amplitude", "i_total", 0.38, None, 8, SourceLoc("x", 1))
     assert f.label == "amplitude(i_total, order 8)"
+
+
+def test_a_netlist_without_probes_is_told_to_declare_them(tmp_path):
+    p = _csv(tmp_path, "time,speed\n" + "".join(f"{k},{k}\n" for k in range(9)))
+    msg = _error(lambda: load_record(p, []))
+    assert "rec.csv:1" in msg and "declares no probes" in msg and "'probes:'" in msg

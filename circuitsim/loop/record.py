@@ -193,6 +193,10 @@ def _check_header(p: str, header: list[str], probes: Sequence[str] | None,
         raise DataError(f"data file '{p}' has no '{time}' column (columns: "
                         f"{', '.join(header)}){_near_text(time, header)}. Name the time "
                         f"column '{time}' (seconds)", SourceLoc(p, 1))
+    if probes is not None and not probes:
+        raise DataError(f"the netlist declares no probes, so no column of data file '{p}' "
+                        f"can be compared with it. Add a 'probes:' section naming what each "
+                        f"column measures (e.g. 'speed: rotor.w', 'i: La.i')", SourceLoc(p, 1))
     if probes is not None:
         allowed = {*probes, *inputs}
         for h in header:
