@@ -387,6 +387,24 @@ def test_global_parameter_naming_unknown_parameter(write_netlist):
     _check(ei.value, path, 3, None, "parameter 'R2' refers to unknown parameter 'R9'")
 
 
+
+@pytest.mark.parametrize(("value", "words"), [
+    ("10**10**10", "overflows a float"), ("1/0", "division by zero")])
+def test_a_parameter_that_cannot_be_evaluated_says_why_in_words(write_netlist, value, words):
+    """Python's own words for an overflow ('(34, 'Numerical result out of range')') are not
+    shown: the error says the value overflows and what to rewrite."""
+    path = write_netlist(f"""
+        parameters:
+          R2: {value}
+        components:
+          - {{name: V1, type: V, p: a, n: gnd, V: 1 V}}
+          - {{name: R1, type: R, p: a, n: gnd, R: R2}}
+        """)
+    with pytest.raises(cs.ParameterError) as ei:
+        cs.load(path)
+    _check(ei.value, path, 2, None, "parameter 'R2': ", words)
+    assert "Numerical result" not in str(ei.value)
+
 CODE = [
     "__import__('os').system('touch PWNED')",
     "(lambda: 1)()",

@@ -553,7 +553,7 @@ def typed_value(text: str, target: Dim | None = None, unit: str | None = None) -
         value = ex.evaluate(node, {})
         dim = ex.dimension(node, {})
     except (ZeroDivisionError, OverflowError, KeyError) as exc:
-        raise ValueError(str(exc)) from None
+        raise ValueError(_why(exc)) from None
     if node.kind == "unit" and target is not None and dim is not None and \
             not compatible(dim, target):
         raise ValueError(explain_mismatch(dim, target, unit or unit_name(target)))
@@ -634,7 +634,7 @@ def _order_params(raw: _Raw, scoped: set[str] = frozenset()) -> dict[str, Global
             val = ex.evaluate(nodes[name], env)
             dim = ex.dimension(nodes[name], dims)
         except (ValueError, ZeroDivisionError, OverflowError) as exc:
-            raise ParameterError(f"parameter '{name}': {exc}", loc) from None
+            raise ParameterError(f"parameter '{name}': {_why(exc)}", loc) from None
         if not math.isfinite(val):
             raise ParameterError(f"parameter '{name}' evaluates to {val}", loc)
         # An expression over unit-less names stays unknowable; a bare number (also a signed
@@ -672,7 +672,7 @@ class _Builder:
             val = ex.evaluate(node, self.env)
             dim = ex.dimension(node, self.dims)
         except (ValueError, ZeroDivisionError, OverflowError) as exc:
-            raise ParameterError(f"parameter '{key}': {exc}", loc, comp) from None
+            raise ParameterError(f"parameter '{key}': {_why(exc)}", loc, comp) from None
         if dim is not None and unit not in ("1",) and _carries_units(node, self.dims):
             _, target = unit_info(unit)
             if not compatible(dim, target):
@@ -1068,3 +1068,12 @@ def too_many_points(points: float) -> str:
             f"{MAX_OUTPUT_POINTS:.0e}; raise the output step (analysis: step) or shorten "
             f"the run (a waveform's rise time needs no output step of its own: the integrator "
             f"steps through it)")
+
+
+def _why(exc: Exception) -> str:
+    """An evaluation error in words: Python's OverflowError reads '(34, 'Numerical result
+    out of range')'."""
+    if isinstance(exc, OverflowError):
+        return ("its value overflows a float (beyond 1.8e308: a power tower or too large an "
+                "exponent); rewrite the expression")
+    return str(exc)
