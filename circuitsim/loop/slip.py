@@ -136,7 +136,8 @@ def scale_hints(record, residuals: Mapping[str, np.ndarray], probes: Sequence[st
         if not (mm > 0.0 and left > 0.0 and math.isfinite(mm) and math.isfinite(left)):
             continue
         g = float(y @ m) / mm
-        if not (g < 0.0 or abs(math.log(abs(g))) >= math.log(SCALE)) or g == 0.0:
+        # a flat record (g = 0) reads nothing of the model: no scale to name
+        if g == 0.0 or not (g < 0.0 or abs(math.log(abs(g))) >= math.log(SCALE)):
             continue
         after = float(np.sum((y - g * m) ** 2))
         if after > GAIN**2 * left:
