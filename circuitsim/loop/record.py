@@ -204,7 +204,9 @@ def _check_header(p: str, header: list[str], probes: Sequence[str] | None,
                 raise DataError(f"column '{h}' of data file '{p}' is not a probe of the "
                                 f"netlist{_near_text(h, list(probes))} (probes: "
                                 f"{', '.join(probes)}). Rename the column after a probe, add "
-                                f"a probe '{h}' to the netlist, or delete the column",
+                                f"a probe '{h}' to the netlist, or delete the column; a "
+                                f"measured input or a signal to leave unused is listed as "
+                                f"one (on the command line, --inputs {h})",
                                 SourceLoc(p, 1))
         if not any(h in probes for h in header):
             raise DataError(f"data file '{p}' has no column for any probe of the netlist "
