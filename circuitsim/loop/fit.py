@@ -941,9 +941,7 @@ def fit_record(model, record: Record, free: Sequence[str], *,
     reduce : first bring a long, oversampled record to the resolution its content needs
         (``loop.reduce.reduce_record``). progress : called with a line at each simulation.
     refuse_slip : raise DataError when the record matches the fitted model only after a
-        unit's factor or a sign (``loop.slip``): a column in the wrong unit, a reversed sensor;
-        and add to the warnings what ``slip.hints`` asks to check (a late clock, a record in
-        ms, a probe met only scaled).
+        unit's factor or a sign (``loop.slip``), and warn of what ``slip.hints`` asks to check.
 
     Returns
     -------
@@ -961,11 +959,10 @@ def fit_record(model, record: Record, free: Sequence[str], *,
                                            tol)
     prob.stage = "uncertainty"
     result = prob.result(z, step, ok, msg, nfev, stages)
-    if refuse_slip:
+    if refuse_slip:  # a unit's slip refused; a clock or a scale, the user's or not, said
         slip.refuse(model, record, result.residuals)
-        # said, not refused: a clock or a scale that may be the user's or the model's
-        result = dataclasses.replace(result, warnings=(
-            *result.warnings, *slip.hints(model, record, result.residuals, result.error)))
+        notes = (*result.warnings, *slip.hints(model, record, result.residuals, result.error))
+        result = dataclasses.replace(result, warnings=notes)
     return dataclasses.replace(result, reduction=reduction)
 
 
