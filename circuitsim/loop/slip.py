@@ -81,23 +81,13 @@ def slip_of(record, residuals: Mapping[str, np.ndarray], probes: Sequence[str],
     record - model on the record's grid), or None when the model is not off by a unit's
     factor or a sign on any probe. A probe whose residual is not on the record's grid (a
     caller's mistake) is not judged. A record whose clock starts later than its own length
-    is not judged either: its misfit is the clock's (``result.clock_hints``), and a periodic
+    is not judged either: its misfit is the clock's (``clock_hints``), and a periodic
     signal half a period late reads as its negative."""
     t = np.asarray(record.t, float)
     if t.size > 1 and float(t[0]) > float(t[-1] - t[0]):
         return None
     found = []
-    for p in probes:
-        y = np.asarray(record[p], float)
-        r = np.asarray(residuals.get(p, ()), float)
-        if r.shape != y.shape:
-            continue
-        m = y - r
-        mm = float(m @ m)
-        if not (mm > 0.0 and math.isfinite(mm)):
-            continue
-        g = float(y @ m) / mm
-        left = float(r @ r)
+    for p, y, m, g, left in _scales(record, residuals, probes):
         # of the factors near g that scaling mends (their windows overlap: 57.3 and 60),
         # the one that mends most
         near = [(float(np.sum((y - f * m) ** 2)), f, why)
@@ -117,6 +107,22 @@ def slip_of(record, residuals: Mapping[str, np.ndarray], probes: Sequence[str],
             "lacks), the netlist")
 
 
+def _scales(record, residuals: Mapping[str, np.ndarray], probes: Sequence[str]):
+    """Per probe that can be judged: its name, the record's column y, the model's run m on
+    the record's grid (y - residual), the least-squares factor g from m to y [-] and the
+    misfit left as it stands (the residual's sum of squares). A probe whose residual is not
+    on the record's grid (a caller's mistake) or whose model is flat is left out."""
+    for p in probes:
+        y = np.asarray(record[p], float)
+        r = np.asarray(residuals.get(p, ()), float)
+        if r.shape != y.shape:
+            continue
+        m = y - r
+        mm, left = float(m @ m), float(r @ r)
+        if mm > 0.0 and math.isfinite(mm) and math.isfinite(left):
+            yield p, y, m, float(y @ m) / mm, left
+
+
 def scale_hints(record, residuals: Mapping[str, np.ndarray], probes: Sequence[str],
                 units: Mapping[str, str]) -> list[str]:
     """What to check when a probe of the record is the model's run scaled by a factor far
@@ -126,18 +132,10 @@ def scale_hints(record, residuals: Mapping[str, np.ndarray], probes: Sequence[st
     wrong). Said, not refused: unlike a unit's exact factor, such a scale may be the model's
     own. ``residuals``: record - model on the record's grid."""
     out = []
-    for p in probes:
-        y = np.asarray(record[p], float)
-        r = np.asarray(residuals.get(p, ()), float)
-        if r.shape != y.shape:
-            continue
-        m = y - r
-        mm, left = float(m @ m), float(r @ r)
-        if not (mm > 0.0 and left > 0.0 and math.isfinite(mm) and math.isfinite(left)):
-            continue
-        g = float(y @ m) / mm
+    for p, y, m, g, left in _scales(record, residuals, probes):
         # a flat record (g = 0) reads nothing of the model: no scale to name
-        if g == 0.0 or not (g < 0.0 or abs(math.log(abs(g))) >= math.log(SCALE)):
+        if left <= 0.0 or g == 0.0 or not (g < 0.0 or
+                                           abs(math.log(abs(g))) >= math.log(SCALE)):
             continue
         after = float(np.sum((y - g * m) ** 2))
         if after > GAIN**2 * left:
