@@ -7,6 +7,11 @@ at the edge of its range, or "something remains that I cannot name". It is found
 declared model's fit: the factor g that maps the model's run onto the record (least
 squares) lies within ``NEAR`` of a unit factor or of -1, and that factor leaves at most
 ``GAIN`` of the misfit the model leaves as it stands.
+
+What may be the user's slip or the model's own is said, not refused (``hints``, in a fit's
+warnings and a diagnosis's ``check:`` lines): a scale far from 1 that mends a probe
+(``scale_hints``: a column in mA from a sensor 8 % high), a record whose clock starts late
+or that spans a hundred times the netlist's analysis (``clock_hints``: a time column in ms).
 """
 
 from __future__ import annotations
