@@ -1761,6 +1761,11 @@ def test_clock_hint_only_for_a_gross_misfit_on_a_late_clock():
     assert "1e+03 times the netlist's analysis" in hint and "time [ms]" in hint
     assert clock_hints(early * 1000, 0.9 * GROSS_MISFIT, stop=0.4) == []
     assert clock_hints(early * 10, 1.16, stop=0.4) == []  # a long record, in seconds
+    # a record in minutes read as s: its 0.4 min read as 6.7 ms, 1/60 of a 0.4 s analysis
+    (hint,) = clock_hints(early / 60, 1.16, stop=0.4)
+    assert "1/60 of the netlist's analysis" in hint and "time [min]" in hint
+    assert clock_hints(early / 60, 0.9 * GROSS_MISFIT, stop=0.4) == []
+    assert clock_hints(early / 10, 1.16, stop=0.4) == []  # a short record, in seconds
     (hint,) = clock_hints(1000.0 + early, 1.16, stop=0.4)  # a late clock: its hint alone
     assert "subtract 1000 s" in hint
     assert clock_hints(late, float("nan")) == []  # every probe flat: no misfit to explain

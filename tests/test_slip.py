@@ -243,3 +243,14 @@ def _fit_stub():
                      kind="record", success=True, message="", nfev=3, stages=(),
                      units={"R": "ohm"}, params={"R": 7766.7}, errors={"i": 0.1},
                      residuals={"i": np.zeros(3)})
+
+
+def test_a_record_of_a_shaft_at_rest_throughout_reads_no_orders():
+    """A record that ends before the motor starts (0.6 s of a test logged in minutes, read
+    as 10 ms of rest) gives order tracking nothing to travel: no angle spectrum, no
+    IndexError from an empty travel (the diagnosis had stopped with a traceback)."""
+    from circuitsim.loop.diagnose.residual import on_travelled_angle
+
+    t = np.linspace(0.0, 0.01, 201)
+    assert on_travelled_angle(t, np.zeros_like(t), np.sin(t)) is None
+    assert on_travelled_angle(t[:0], t[:0], t[:0]) is None

@@ -169,6 +169,9 @@ GROSS_MISFIT = 0.5
 #: how many times the netlist's own analysis a record must span before a gross misfit
 #: questions its time unit (``clock_hints``) [-]: a record in ms read as s spans 1000 times it
 LONG_SPAN = 100.0
+#: how many times shorter than the netlist's analysis a record must be before a gross misfit
+#: questions its time unit [-]: a record in minutes read as s spans 1/60 of its length
+SHORT_SPAN = 50.0
 
 
 def clock_hints(t: np.ndarray, error: float, stop: float | None = None) -> list[str]:
@@ -177,7 +180,8 @@ def clock_hints(t: np.ndarray, error: float, stop: float | None = None) -> list[
     netlist's inputs act from t = 0, so a logger's clock that did not start with the
     experiment puts every step of the model at the wrong time, and no effect can mend that),
     and a record that spans ``LONG_SPAN`` times the netlist's analysis ``stop`` [s] or more
-    (a time column in ms or us read as s)."""
+    (a time column in ms or us read as s), or 1/``SHORT_SPAN`` of it or less (in minutes or
+    hours)."""
     t0, length = float(t[0]), float(t[-1] - t[0])
     if not error >= GROSS_MISFIT:  # a NaN error (every probe flat) asks nothing
         return []
@@ -193,6 +197,11 @@ def clock_hints(t: np.ndarray, error: float, stop: float | None = None) -> list[
                    f"record spans {length:.6g} s, {length / stop:.3g} times the netlist's "
                    f"analysis (stop {stop:.6g} s). If its time column is in ms or us, say so "
                    f"in its header ('time [ms]')")
+    elif stop and stop > 0 and 0 < length * SHORT_SPAN <= stop:
+        out.append(f"the model still misses the record by {error:.0%} of its spread, and the "
+                   f"record spans {length:.6g} s, 1/{stop / length:.3g} of the netlist's "
+                   f"analysis (stop {stop:.6g} s). If its time column is in minutes or hours, "
+                   f"say so in its header ('time [min]')")
     return out
 
 

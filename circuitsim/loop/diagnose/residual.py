@@ -169,6 +169,8 @@ def on_travelled_angle(t: np.ndarray, w: np.ndarray, r: np.ndarray
     count (a start from rest, a pause). None when it travels under two turns."""
     w = np.abs(np.asarray(w, float))
     moving = w > 0.1 * max(float(np.max(w)), 1e-300) if w.size else w > 0
+    if not np.any(moving):  # a shaft at rest over the whole record travels nothing
+        return None
     travel = np.concatenate([[0.0], np.cumsum(0.5 * (w[1:] + w[:-1]) * np.diff(t))])[moving]
     keep = np.concatenate([[True], np.diff(travel) > 0])
     travel, x = travel[keep], np.asarray(r, float)[moving][keep]
