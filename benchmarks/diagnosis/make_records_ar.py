@@ -521,76 +521,16 @@ PLACES = {"rotor": N, "hub": 1.0, "basket": 1.0}
 #: place of factor ga is dJ (ga/gb)^2 on a place of factor gb (Jr is the rotor's, the
 #: parameter Jm)
 INERTIAS = {"Jr": ("Jm", N), "Jh": ("Jh", 1.0), "Jb": ("Jb", 1.0)}
-TORQUE_KINDS = ("coul", "offset", "visc", "stribeck", "cog")
-
-
-def _torque_at(kind: str, value: Any, ga: float, gb: float, other: str) -> list[dict] | None:
-    """The columns' fx of a torque effect ``kind`` of size ``value`` at a place of factor
-    ``ga``, moved to ``other`` of factor ``gb``; None when it has no equal there."""
-    f = ga / gb
-    if kind == "visc":
-        return [{kind: {other: value * f ** 2}}]
-    if kind == "stribeck":
-        peak, ws = value
-        return [{kind: {other: (peak * f, ws / f)}}]
-    if kind == "cog":
-        terms = []
-        for k, a, b in value:
-            order = k * f
-            if abs(order - round(order)) > 1e-9:
-                return None
-            terms.append((round(order), math.hypot(a, b) * f))
-        return [{kind: {other: [(k, amp * c, amp * d) for k, amp in terms]}}
-                for c, d in ((1.0, 0.0), (0.0, 1.0))]
-    return [{kind: {other: value * f}}]
-
-
-def moved(frag: dict, target: str) -> list[tuple[str, list[dict]]]:
-    """Every other place of ``target``'s group (PLACES for a torque effect, INERTIAS for an
-    inertia) and the columns' fx of the effect ``frag`` moved there at its equivalent size:
-    (other, fxs) pairs, none when the effect has no equal elsewhere."""
-    (kind, where), = frag.items()
-    out: list[tuple[str, list[dict]]] = []
-    if kind == "p" and target in INERTIAS:
-        param, ga = INERTIAS[target]
-        added = float(where[param]) - P[param]
-        for other, (oparam, gb) in INERTIAS.items():
-            if other != target:
-                out.append((other, [{"p": {oparam: P[oparam] + added * (ga / gb) ** 2}}]))
-        return out
-    if kind not in TORQUE_KINDS or target not in PLACES:
-        return out
-    for other, gb in PLACES.items():
-        if other == target:
-            continue
-        fxs = _torque_at(kind, where[target], PLACES[target], gb, other)
-        if fxs is not None:
-            out.append((other, fxs))
-    return out
+#: the places on the far side of the train's compliance: a pair with one of them is ``across``
+BEYOND = ("basket", "Jb")
 
 
 def _location_entry(s: dict[str, Any]) -> dict[str, Any]:
     """A catalog or two-effect record's ``location_sigma``, after a marginal record's
-    scaling: ``recordkit.location_entry``'s rule (each truth effect's own clean imprint, run
-    alone on the record's times, against the same effect at its equivalent size at each other
-    place, best-scaled), with ``moved`` for its equals: across the coupling (``across``: true)
-    and through the rigid gear (false)."""
-    if s["class"] not in ("catalog", "two"):
-        return {}
-    regime, t, imp, out = s["regime"], times(s), imprints(s), []
-    for frag, e in s["parts"]:
-        if (e["target"] not in PLACES and e["target"] not in INERTIAS) or len(frag) != 1:
-            continue
-        y = None
-        for other, fxs in moved(frag, e["target"]):
-            if y is None:
-                y = imp.imprint(regime, sim(regime, t, frag))
-            cols = np.column_stack([imp.imprint(regime, sim(regime, t, fx)) for fx in fxs])
-            across = "basket" in (e["target"], other) or "Jb" in (e["target"], other)
-            out.append({"effect": e["effect"], "target": e["target"], "other": other,
-                        "across": across, "sigma": recordkit.left(y, cols),
-                        "imprint_sigma": float(np.linalg.norm(y))})
-    return {"location_sigma": out}
+    scaling: recordkit.places_entry over PLACES and INERTIAS (each truth effect's own clean
+    imprint, run alone on the record's times, against the same effect at its equivalent size
+    at each other place, best-scaled)."""
+    return recordkit.places_entry(s, times(s), imprints(s), sim, PLACES, INERTIAS, P, BEYOND)
 
 
 #: the plumbing of this set: truth entries, marginal scaling, the catalog's imprints an
