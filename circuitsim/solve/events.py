@@ -27,6 +27,7 @@ import numpy as np
 from circuitsim.errors import SolverError
 from circuitsim.solve.init import consistent_initial
 from circuitsim.solve.kernel_lib import BAND_ABS, BAND_REL, ROOT_RETURN
+from circuitsim.solve.watch import Runaway
 
 #: Rounds of event iteration at one instant before the switching is declared chattering
 #: (a half-bridge commutation takes three: gate off, diode on, dead time over).
@@ -253,6 +254,8 @@ def segment(system, run, a: float, b: float, eps: float, state, record, chunk: i
         try:
             sol = watching_ida(system.residual, opts).solve(
                 np.concatenate([[state.t], part]), state.y, state.yp)
+        except Runaway:
+            raise
         except Exception as exc:  # noqa: BLE001 - the wrapper raises assorted types
             return (f"at t = {state.t:.6g} s the integrator stopped ({exc!r}); try "
                     f"smaller tolerances or max_step")

@@ -23,6 +23,7 @@ from circuitsim.solve import events
 from circuitsim.solve.init import check_initial, consistent_initial, initial_state
 from circuitsim.solve.result import SimResult, Status
 from circuitsim.solve.sources import bound_step
+from circuitsim.solve.watch import Runaway, watched
 
 
 def break_times(model, values: Mapping[str, float], stop: float) -> list[float]:
@@ -153,16 +154,32 @@ def simulate(model, stop: float | None = None, params: Mapping[str, float] | Non
     if n == 0:  # every unknown was eliminated: the outputs are explicit functions of t
         empty = np.zeros((0, run.t_eval.size))
         return _finite(SimResult(run.t_eval, empty, empty, (), Status.OK, "", 0, 0, model, p))
-    start = consistent_start(model, run, params, p)
-    if isinstance(start, str):
-        return SimResult(run.t_eval[:0], np.zeros((n, 0)), np.zeros((n, 0)),
-                         model.state_names, Status.INIT_FAILED, start, 0, 0, model, p)
-    rec = Recorder(keep_after, decimate, progress)
-    status, detail, nfev, njev = _integrate(model, run, p, corners(model, values, run.stop),
-                                            start, rec, chunk)
+    # a run that overflows fails with a message naming the time and the variable (or the
+    # probe that is not finite): numpy's warnings about it from inside the solver are noise
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        start = consistent_start(model, run, params, p)
+        if isinstance(start, str):
+            return SimResult(run.t_eval[:0], np.zeros((n, 0)), np.zeros((n, 0)),
+                             model.state_names, Status.INIT_FAILED, start, 0, 0, model, p)
+        rec = Recorder(keep_after, decimate, progress)
+        status, detail, nfev, njev = _integrate(model, run, p,
+                                                corners(model, values, run.stop), start, rec,
+                                                chunk)
+    if status is Status.SOLVER_FAILED:
+        detail += _huge_parameters(model, p)
     t_all, y_all, yp_all = rec.arrays(n)
     return _finite(SimResult(t_all, y_all, yp_all, model.state_names, status, detail, nfev,
                              njev, model, p, np.array(rec.event_times)))
+
+
+def _huge_parameters(model, p: tuple) -> str:
+    """The words for a failed run's parameters beyond any physical value, if it has any."""
+    huge = [f"{name} = {v:.3g}" for name, v in zip(model.meta["params"], p, strict=True)
+            if not abs(v) < HUGE]
+    if not huge:
+        return ""
+    return (f". The parameter values {', '.join(huge)} are beyond any physical value: they "
+            f"overflow the integrator's arithmetic; check the netlist's parameters and --set")
 
 
 def consistent_start(model, run: Settings, params: Mapping[str, float] | None, p: tuple
@@ -278,11 +295,15 @@ def model_system(model, run: Settings, p: tuple) -> System:
             return switching.restart(t, y, yp)
         return consistent_initial(model, t, y, p, yp_guess=yp)
 
-    return System(model.fns[0], opts, restart, model.state_names, switching,
+    # the Python route's residual, watched for a run that cannot finish (solve/watch.py)
+    residual = watched(model.fns[0], run.stop, model.state_names, run.rtol, run.atol)
+    return System(residual, opts, restart, model.state_names, switching,
                   table_rows(model, run.stop),
                   lambda t, y, yp: singular_pencil(model, p, t, y, yp, run.stop))
 
 
+#: [SI] a state or rate beyond this is no physical value: IDA's weighted norms square it
+HUGE = 1e100
 #: [unknowns] the failure diagnosis below factors dense matrices up to this size
 PENCIL_MAX = 600
 
@@ -354,7 +375,10 @@ def integrate_system(system: System, run: Settings, edges: list[float],
         record(first[:1], y[None, :], yp[None, :])
     state = _Segment(y, yp, 0.0, 0, 0)
     for a, b in itertools.pairwise(edges):
-        detail = step(system, run, a, b, eps, state, record, chunk)
+        try:
+            detail = step(system, run, a, b, eps, state, record, chunk)
+        except Runaway as exc:
+            detail = exc.bare
         if detail is None and b < run.stop:  # a waveform corner: consistent derivatives
             try:
                 state.y, state.yp = system.restart(b, state.y, state.yp)
@@ -393,6 +417,8 @@ def _segment(system: System, run: Settings, a: float, b: float, eps: float,
         try:
             sol = make_ida(system.residual, opts).solve(
                 np.concatenate([[state.t], part]), state.y, state.yp)
+        except Runaway:
+            raise
         except Exception as exc:  # noqa: BLE001 - the wrapper raises assorted types
             return (f"at t = {state.t:.6g} s the integrator stopped ({exc!r}); try "
                     f"smaller tolerances or max_step")
@@ -536,7 +562,18 @@ def _failure(system: System, sol, t_fail: float, rtol: float, atol: float) -> st
     yp = np.asarray(sol.yp)
     name, singular = "?", ""
     if y.size:
-        rate = np.abs(yp[-1]) / (rtol * np.abs(y[-1]) + atol)
+        with np.errstate(all="ignore"):
+            size = np.maximum(np.abs(y[-1]), np.abs(yp[-1]))
+        bad = ~(size < HUGE)
+        if bad.any():  # IDA's norms overflow: its own words would not say so
+            k = int(np.argmax(bad))
+            v, r = y[-1][k], yp[-1][k]
+            return (f"at t = {t_fail:.6g} s {system.names[k]} = {v:.4g} (its rate {r:.4g}): "
+                    f"values this large (or not a number) overflow the integrator's arithmetic. A parameter "
+                    f"far from its physical value does this; check the netlist's parameters "
+                    f"and --set")
+        with np.errstate(all="ignore"):
+            rate = np.abs(yp[-1]) / (rtol * np.abs(y[-1]) + atol)
         name = system.names[int(np.argmax(rate))]
         if system.why_singular is not None:
             singular = system.why_singular(t_fail, y[-1], yp[-1])

@@ -1,0 +1,119 @@
+"""A run that cannot finish is stopped with a reason (solve/watch.py), and a run that can is
+left alone: the pace rule on synthetic paces, then whole runs through the CLI."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from circuitsim.solve import watch
+from circuitsim.solve.watch import LIMIT, SLOWING, STRIKES, WINDOW, Runaway, Watch
+
+#: [s] a pace (simulated time gained per window) projecting twice the limit from t ~ 0
+SLOW = 0.5 * WINDOW / LIMIT
+
+
+def _paced(paces: list[float], stop: float = 1.0) -> Watch:
+    """A watch judged once per WINDOW evaluations, the simulated time moving by ``paces``."""
+    w = Watch(lambda *a: None, stop, ("x", "y"), 1e-6, 1e-9)
+    y, yp = np.array([1.0, 2.0]), np.array([0.0, 5e7])
+    t = 1e-6
+    w.judge(t, y, yp)
+    for gained in paces:
+        t += gained
+        w.judge(t, y, yp)
+    return w
+
+
+def test_a_pace_that_finishes_in_time_is_left_alone_however_it_falls():
+    # 1e-2 s gained per window, falling to half of it: at most 2e7 evaluations to go
+    w = _paced([1e-2 * 0.99 ** k for k in range(60)])
+    assert w.paces == []
+
+
+def test_a_long_run_at_a_steady_pace_over_the_limit_is_left_alone():
+    # a PWM drive simulated for hours: over the limit, but not slowing down
+    w = _paced([SLOW * (1 + 0.01 * (-1) ** k) for k in range(40)])
+    assert len(w.paces) == STRIKES
+
+
+def test_a_slow_start_that_speeds_up_is_left_alone():
+    w = _paced([SLOW, SLOW * 0.8, 1e-2, SLOW, SLOW * 1.5, SLOW * 1.2])
+    assert w.paces
+
+
+def test_a_run_slowing_down_over_the_limit_is_stopped_with_the_fastest_variable():
+    paces = [SLOW * (0.98 * SLOWING) ** (k / (STRIKES - 1)) for k in range(STRIKES)]
+    with pytest.raises(Runaway) as exc:
+        _paced(paces)
+    text = str(exc.value)
+    assert "fastest-changing variable: y = 2" in text
+    assert "CIRCUITSIM_RUNAWAY=off" in text and "keeps falling" in text
+
+
+def test_a_fall_too_small_is_not_enough():
+    paces = [SLOW * (1 - 0.5 * (1 - SLOWING) * k / (STRIKES - 1)) for k in range(STRIKES + 3)]
+    w = _paced(paces)
+    assert len(w.paces) == STRIKES
+
+
+def test_no_progress_at_all_is_stopped():
+    with pytest.raises(Runaway):
+        _paced([0.0] * STRIKES)
+
+
+def test_the_watch_passes_the_residual_through_and_can_be_turned_off(monkeypatch):
+    calls = []
+    w = watch.watched(lambda t, y, yp, r, u: calls.append((t, u)), 1.0, ("x",), 1e-6, 1e-9)
+    w(0.5, None, None, None, "data")
+    assert calls == [(0.5, "data")] and w.count == 1
+    monkeypatch.setenv("CIRCUITSIM_RUNAWAY", "off")
+    f = object()
+    assert watch.watched(f, 1.0, ("x",), 1e-6, 1e-9) is f  # type: ignore[arg-type]
+
+
+CHIRP = """\
+title: a source whose frequency rises without bound
+parameters: {A: 1 V, a: 1e13 s^-2}
+components:
+  - {name: B1, type: BV, p: in, n: gnd, expr: "A*sin(a*t*t)"}
+  - {name: R1, type: R, p: in, n: out, R: 1 kohm}
+  - {name: C1, type: C, p: out, n: gnd, C: 1 nF}
+probes: {v: out.v}
+analysis: {stop: 10 ms, step: 1 us}
+"""
+
+
+def test_a_run_that_cannot_finish_stops_with_exit_1_and_says_why(tmp_path, capsys,
+                                                                 monkeypatch):
+    from circuitsim.cli.main import main
+
+    # the route a `run` process takes (a fit earlier in this process may have asked for
+    # the compiled kernels, which are not watched)
+    monkeypatch.setenv("CIRCUITSIM_KERNELS", "python")
+
+    path = tmp_path / "chirp.yaml"
+    path.write_text(CHIRP)
+    rc = main(["run", str(path), "--no-files", "--quiet"])
+    err = capsys.readouterr().err
+    assert rc == 1
+    assert "slows down" in err and "fastest-changing variable" in err
+    assert "A parameter far from its physical value" in err
+
+
+def test_a_value_that_overflows_the_arithmetic_is_named_without_numpy_warnings(capsys,
+                                                                              monkeypatch):
+    import warnings
+    from pathlib import Path
+
+    from circuitsim.cli.main import main
+
+    net = Path(__file__).resolve().parents[1] / "netlists" / "examples" / "dc_motor.yaml"
+    monkeypatch.setenv("CIRCUITSIM_KERNELS", "python")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        rc = main(["run", str(net), "--no-files", "--quiet", "--set", "V=1e301"])
+    err = capsys.readouterr().err
+    assert rc == 1
+    assert "overflow the integrator's arithmetic" in err and "check the netlist's" in err
+    assert not [w for w in caught if issubclass(w.category, RuntimeWarning)]
