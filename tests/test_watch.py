@@ -115,5 +115,22 @@ def test_a_value_that_overflows_the_arithmetic_is_named_without_numpy_warnings(c
         rc = main(["run", str(net), "--no-files", "--quiet", "--set", "V=1e301"])
     err = capsys.readouterr().err
     assert rc == 1
-    assert "overflow the integrator's arithmetic" in err and "check the netlist's" in err
+    assert "V1.V.v1 = 1e+301 are beyond any physical value" in err
+    assert "overflow the solver's arithmetic" in err and "check the netlist's" in err
+    assert not [w for w in caught if issubclass(w.category, RuntimeWarning)]
+
+
+def test_an_operating_point_on_a_parameter_that_overflows_says_so(capsys):
+    import warnings
+    from pathlib import Path
+
+    from circuitsim.cli.main import main
+
+    net = Path(__file__).resolve().parents[1] / "netlists" / "examples" / "dc_motor.yaml"
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        rc = main(["op", str(net), "--set", "V=1e301", "--time", "1"])
+    err = capsys.readouterr().err
+    assert rc == 1
+    assert "operating point" in err and "beyond any physical value" in err
     assert not [w for w in caught if issubclass(w.category, RuntimeWarning)]

@@ -23,7 +23,7 @@ from circuitsim.solve import events
 from circuitsim.solve.init import check_initial, consistent_initial, initial_state
 from circuitsim.solve.result import SimResult, Status
 from circuitsim.solve.sources import bound_step
-from circuitsim.solve.watch import Runaway, watched
+from circuitsim.solve.watch import HUGE, Runaway, huge_parameters, watched
 
 
 def break_times(model, values: Mapping[str, float], stop: float) -> list[float]:
@@ -166,20 +166,10 @@ def simulate(model, stop: float | None = None, params: Mapping[str, float] | Non
                                                 corners(model, values, run.stop), start, rec,
                                                 chunk)
     if status is Status.SOLVER_FAILED:
-        detail += _huge_parameters(model, p)
+        detail += huge_parameters(model, p)
     t_all, y_all, yp_all = rec.arrays(n)
     return _finite(SimResult(t_all, y_all, yp_all, model.state_names, status, detail, nfev,
                              njev, model, p, np.array(rec.event_times)))
-
-
-def _huge_parameters(model, p: tuple) -> str:
-    """The words for a failed run's parameters beyond any physical value, if it has any."""
-    huge = [f"{name} = {v:.3g}" for name, v in zip(model.meta["params"], p, strict=True)
-            if not abs(v) < HUGE]
-    if not huge:
-        return ""
-    return (f". The parameter values {', '.join(huge)} are beyond any physical value: they "
-            f"overflow the integrator's arithmetic; check the netlist's parameters and --set")
 
 
 def consistent_start(model, run: Settings, params: Mapping[str, float] | None, p: tuple
@@ -302,8 +292,6 @@ def model_system(model, run: Settings, p: tuple) -> System:
                   lambda t, y, yp: singular_pencil(model, p, t, y, yp, run.stop))
 
 
-#: [SI] a state or rate beyond this is no physical value: IDA's weighted norms square it
-HUGE = 1e100
 #: [unknowns] the failure diagnosis below factors dense matrices up to this size
 PENCIL_MAX = 600
 

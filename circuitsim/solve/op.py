@@ -17,6 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from circuitsim.errors import SolverError
+from circuitsim.solve.watch import huge_parameters
 
 N_AVERAGE = 64  # sample angles per turn: exact for ripple harmonics up to order 63
 
@@ -75,13 +76,20 @@ def operating_point(model, params: Mapping[str, float] | None = None, t: float =
     samples = np.arange(N_AVERAGE) * 2 * np.pi / N_AVERAGE if angles else np.zeros(1)
     averaged = _averaged(model, t, p, angles, samples)
     cols_y = [k for k in range(n) if k not in set(free)]
-    y, yp, f, it = _dc_newton(averaged, y, np.zeros(n), cols_y, free, tol, max_iter, names)
+    # a Newton that overflows fails with its own message: numpy's warnings would be noise
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        try:
+            y, yp, f, it = _dc_newton(averaged, y, np.zeros(n), cols_y, free, tol, max_iter,
+                                      names)
+        except SolverError as exc:
+            raise SolverError(exc.bare + huge_parameters(model, p)) from None
     if it is not None:
         return OperatingPoint(y, yp, names, it)
     worst = int(np.argmax(np.abs(f)))
     raise SolverError(f"operating point: Newton did not converge in {max_iter} iterations; "
                       f"largest residual {f[worst]:.3g} in the equation of {names[worst]}. Try "
-                      f"starting from rest (init: rest), or ramp the sources (source stepping)")
+                      f"starting from rest (init: rest), or ramp the sources (source "
+                      f"stepping){huge_parameters(model, p)}")
 
 
 def _dc_newton(averaged, y: np.ndarray, yp: np.ndarray, cols_y: list[int], free: list[int],

@@ -1,4 +1,5 @@
-"""A run that cannot finish, found by its pace: simulated time gained per residual evaluation.
+"""A run that cannot finish, found by its pace: simulated time gained per residual evaluation
+(and the words for a solve that fails on a parameter beyond any physical value).
 
 A parameter far from its physical value can make a run's solution change ever faster: a 1 TV
 supply spins a motor without bound, its back-EMF ripple's frequency rises with the speed, and
@@ -37,6 +38,22 @@ LIMIT = 1e8
 STRIKES = 3
 #: the pace at the last of them is at most this fraction of the first's
 SLOWING = 0.9
+
+
+#: [SI] a state, rate or parameter beyond this is no physical value: IDA's and Newton's norms
+#: square it and overflow
+HUGE = 1e100
+
+
+def huge_parameters(model, p: Sequence[float]) -> str:
+    """The words for a failed solve's parameters beyond any physical value, if it has any
+    (``p`` in the order of the model's parameters)."""
+    huge = [f"{name} = {v:.3g}" for name, v in zip(model.meta["params"], p, strict=True)
+            if not abs(v) < HUGE]
+    if not huge:
+        return ""
+    return (f". The parameter values {', '.join(huge)} are beyond any physical value: they "
+            f"overflow the solver's arithmetic; check the netlist's parameters and --set")
 
 
 class Runaway(SolverError):
