@@ -6,6 +6,7 @@ import csv
 
 import pytest
 
+from circuitsim.errors import ParameterError
 from circuitsim.studies.sweep import Metrics, grid_points, parse_range, sweep
 
 from conftest import NETLISTS
@@ -25,6 +26,23 @@ def test_parse_range_and_grids():
     assert len(grid_points({"a": [1, 2, 3], "b": [4, 5]})) == 6
     assert grid_points({"a": [1, 2], "b": [4, 5]}, "zip") == [{"a": 1, "b": 4},
                                                               {"a": 2, "b": 5}]
+
+
+@pytest.mark.parametrize("text", ["1,2,,5", "1,2,", ",1"])
+def test_a_list_with_an_empty_item_is_refused_not_shortened(text):
+    with pytest.raises(ParameterError, match="empty item"):
+        parse_range(text)
+
+
+def test_a_parameter_swept_on_two_axes_is_refused(tmp_path, capsys):
+    from circuitsim.cli.main import main
+
+    net = NETLISTS / "examples" / "rc.yaml"
+    out = tmp_path / "s.csv"
+    rc = main(["sweep", str(net), "--set", "R=1k..2k:lin:2", "--set", "R=3k,4k",
+               "--out", str(out), "--quiet"])
+    assert rc == 2 and "--set R is given twice" in capsys.readouterr().err
+    assert not out.exists()
 
 
 def test_fig9_sweep_matches_the_reference():

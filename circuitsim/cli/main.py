@@ -349,6 +349,9 @@ def _sweep_grid(first, items: list[str]) -> dict[str, list[float]]:
             raise ParameterError(f"--set takes NAME=RANGE (e.g. Lf=1e-9..1e-1:log:9), "
                                  f"got '{item}'")
         name, text = (x.strip() for x in item.split("=", 1))
+        if name in grid:  # a later --set would silently replace the earlier axis
+            raise ParameterError(f"--set {name} is given twice; sweep each parameter on one "
+                                 f"axis (a list as 1,2,5 or a range as 1..10:lin:5)")
         gp = first.parameters.get(name)
         grid[name] = parse_range(text, unit=None if gp else units.get(name),
                                  dim=gp.dim if gp else None)

@@ -75,11 +75,14 @@ def parse_range(text: str, unit: str | None = None, dim=None) -> list[float]:
         if (kind or "lin") != "lin":
             raise ParameterError(f"sweep range '{text}': spacing is 'lin' or 'log'")
         return [float(v) for v in np.linspace(lo, hi, n)]
-    values = [num(s) for s in text.split(",") if s.strip()]
-    if not values:
+    items = text.split(",")
+    if not any(s.strip() for s in items):
         raise ParameterError(f"sweep values '{text}' hold no value: give a list as 1,2,5 or "
                              f"a range as 1..10:lin:5")
-    return values
+    if not all(s.strip() for s in items):  # '1,2,,5': a value lost in typing, not skipped
+        raise ParameterError(f"sweep values '{text}' hold an empty item: give a list as "
+                             f"1,2,5")
+    return [num(s) for s in items]
 
 
 def grid_points(grid: Mapping[str, Sequence[float]], mode: str = "product"
