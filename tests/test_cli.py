@@ -181,3 +181,11 @@ def test_a_probe_without_a_real_value_is_an_error_not_a_nan(write_netlist, capsy
     assert "probe 'i' is nan" in capsys.readouterr().err
     assert main(["op", str(path)]) == 1
     assert "probe 'i' is nan" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("order, words", [("3", "the circuit has no shaft angle"),
+                                          ("0", "a whole number >= 1")])
+def test_ac_order_without_a_shaft_or_below_one_is_bad_input(capsys, order, words):
+    """`ac --order 3` on a circuit with no shaft ended in a ValueError's traceback."""
+    rc = main(["ac", str(RLC), "--output", "v_c", "--order", order])
+    assert rc == 2 and words in capsys.readouterr().err

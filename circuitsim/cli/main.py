@@ -470,7 +470,13 @@ def cmd_ac(args) -> int:
     params = _parse_sets(model, args.set or [])
     lin = linearize(model, params)
     if args.order is not None:
-        h = harmonic_response(model, args.order, args.output, params, lin=lin)
+        if args.order < 1:
+            raise ParameterError(f"--order {args.order}: the shaft harmonic's order is a whole "
+                                 f"number >= 1 (per revolution)")
+        try:
+            h = harmonic_response(model, args.order, args.output, params, lin=lin)
+        except ValueError as exc:
+            raise ParameterError(f"ac --order: {exc}") from None
         if args.json:
             print(json.dumps({"order": h.order, "frequency": h.frequency,
                               "amplitude": h.amplitude, "phase": h.phase}))
