@@ -230,3 +230,31 @@ def test_cli_identify_map():
     out = _cli("identify", "map", str(ODRIVE), "--where", "trial=b", "--count", "5")
     assert out.returncode == 0, out.stderr
     assert "28" in out.stdout and "36" in out.stdout
+
+
+@pytest.mark.parametrize("argv, words", [
+    (["emf", "--pp", "0"], "--pp: '0' must lie in 1..500"),  # was a LinAlgError traceback
+    (["emf", "--pp", "-6"], "--pp: '-6' must lie in 1..500"),  # was a result for p = -6
+    (["emf", "--pp", "6", "--k-max", "100000000"], "must lie in 1..1000"),  # was a hang
+    (["emf", "--pp", "6", "--rel-tol", "nan"], "--rel-tol: 'nan' must be a finite number"),
+    (["emf", "--pp", "6", "--rel-tol", "2"], "must be a fraction in (0, 1)"),
+    (["cogging", "--pp", "6", "--J", "0"], "--J: '0' must be a finite number > 0"),
+    (["map", "--count", "0"], "--count: '0' must lie in 1..1000"),
+])
+def test_identify_options_out_of_range_are_refused_before_any_work(argv, words, capsys):
+    from circuitsim.cli.main import main
+
+    with pytest.raises(SystemExit) as exc:
+        main(["identify", argv[0], "no-such-record.csv", *argv[1:]])
+    assert exc.value.code == 2 and words in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("text", ["0,3", "-1", "1:5e-3,0:1"])
+def test_harmonic_orders_below_one_are_refused(text):
+    from circuitsim.loop.record import DataError
+
+    with pytest.raises(DataError, match=">= 1"):
+        if ":" in text:
+            idf._emf_arg(text, 6)
+        else:
+            idf._ints(text)

@@ -22,9 +22,12 @@ from circuitsim.loop.identify import (
     fit_back_emf,
     fit_disturbance,
     fit_periodic_map,
+    fraction,
     mutual_torque,
     peak_cogging,
+    positive,
     relevant_orders,
+    whole,
 )
 from circuitsim.loop.record import DataError
 from circuitsim.report.identify import _plot_curve, _plot_map
@@ -173,8 +176,8 @@ def _add_observer_args(p: argparse.ArgumentParser) -> None:
     p.add_argument("--currents", default="i1,i2,i3", help="phase current columns [A]")
     p.add_argument("--emf", help="back-EMF coefficients ORDER:A[:B],... [H] "
                    "(e.g. 1:5817e-6,3:57e-6,5:28e-6, from `identify emf`)")
-    p.add_argument("--J", type=float, help="total inertia [kg*m^2]")
-    p.add_argument("--bandwidth", type=float, default=1000.0, help="observer loop [Hz]")
+    p.add_argument("--J", type=positive, help="total inertia [kg*m^2]")
+    p.add_argument("--bandwidth", type=positive, default=1000.0, help="observer loop [Hz]")
 
 
 def add_cli(subparsers) -> None:
@@ -189,8 +192,8 @@ def add_cli(subparsers) -> None:
     shared.add(e)
     e.add_argument("--voltage", default="e1", help="phase-to-neutral voltage column [V]")
     e.add_argument("--shift", type=float, default=0.0, help="electrical phase of this phase")
-    e.add_argument("--k-max", type=int, default=9, help="largest K of the J_min curve")
-    e.add_argument("--rel-tol", type=float, default=1e-4,
+    e.add_argument("--k-max", type=whole(1), default=9, help="largest K of the J_min curve")
+    e.add_argument("--rel-tol", type=fraction, default=1e-4,
                    help="relevant order: J_min drop above this fraction of the signal energy")
     e.add_argument("--orders", help="fit these orders (default 1..largest relevant)")
     e.add_argument("--plot", help="PNG of J_min versus K")
@@ -213,7 +216,7 @@ def add_cli(subparsers) -> None:
     c.add_argument("--no-coulomb", action="store_true", help="no C sign(w) term")
     c.add_argument("--raw", action="store_true",
                    help="take the compensator output as the disturbance (Kapun's plain fit)")
-    c.add_argument("--k-max", type=int, default=0, help="print J_min for K = 0..K_MAX")
+    c.add_argument("--k-max", type=whole(0), default=0, help="print J_min for K = 0..K_MAX")
     c.add_argument("--plot", help="PNG of J_min versus K (with --k-max)")
     c.add_argument("--json", action="store_true", help="print one JSON object")
     c.set_defaults(func=_cmd_cogging)
@@ -223,8 +226,8 @@ def add_cli(subparsers) -> None:
     m.add_argument("--value", default="iq_hold_A", help="torque or current column")
     m.add_argument("--where", action="append", help="keep rows with COLUMN=VALUE")
     m.add_argument("--direction", help="sweep direction column (forward/reverse): adds C")
-    m.add_argument("--count", type=int, default=8, help="orders to select")
-    m.add_argument("--k-max", type=int, default=100, help="largest order searched")
+    m.add_argument("--count", type=whole(1), default=8, help="orders to select")
+    m.add_argument("--k-max", type=whole(1), default=100, help="largest order searched")
     m.add_argument("--orders", help="fit these orders instead of searching")
     m.add_argument("--plot", help="PNG of the map and the fit")
     m.add_argument("--json", action="store_true", help="print one JSON object")

@@ -612,9 +612,53 @@ def add_noise(record: Mapping[str, np.ndarray], sigma: Mapping[str, float],
 
 def _ints(text: str) -> list[int]:
     try:
-        return [int(v) for v in text.split(",") if v.strip()]
+        out = [int(v) for v in text.split(",") if v.strip()]
     except ValueError:
         raise DataError(f"'{text}': expected comma-separated whole numbers, e.g. 1,3,5") from None
+    if any(k < 1 for k in out):  # an order 0 or below is no harmonic of a turn
+        raise DataError(f"'{text}': the orders are whole numbers >= 1, e.g. 1,3,5")
+    return out
+
+
+#: the largest harmonic order any identification step searches: its columns are fitted to
+#: every sample, and a rotor's highest relevant order is a few tens (a slot count)
+MAX_ORDER = 1000
+
+
+def whole(low: int, high: int = MAX_ORDER):
+    """An argparse ``type``: a whole number in [low, high] (argparse says 'error: argument
+    --x: ...' and exits 2 otherwise)."""
+
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"'{text}' is not a whole number") from None
+        if not low <= value <= high:
+            raise argparse.ArgumentTypeError(f"'{text}' must lie in {low}..{high}")
+        return value
+
+    parse.__name__ = "whole number"
+    return parse
+
+
+def positive(text: str) -> float:
+    """An argparse ``type``: a finite number above 0."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a number") from None
+    if not (math.isfinite(value) and value > 0):
+        raise argparse.ArgumentTypeError(f"'{text}' must be a finite number > 0")
+    return value
+
+
+def fraction(text: str) -> float:
+    """An argparse ``type``: a number in (0, 1)."""
+    value = positive(text)
+    if value >= 1:
+        raise argparse.ArgumentTypeError(f"'{text}' must be a fraction in (0, 1)")
+    return value
 
 
 def _emf_arg(text: str, pp: int) -> EmfFit:
@@ -627,6 +671,8 @@ def _emf_arg(text: str, pp: int) -> EmfFit:
             raise DataError(f"--emf '{text}': write ORDER:A[:B],... e.g. 1:5817e-6,3:57e-6")
         try:
             k = int(bits[0])
+            if k < 1:
+                raise DataError(f"--emf '{part}': the order is a whole number >= 1")
             a[k] = float(bits[1])
             b[k] = float(bits[2]) if len(bits) == 3 else 0.0
         except ValueError:
@@ -639,7 +685,7 @@ class _Args:
     """Shared options of the record-based subcommands."""
 
     common: list[tuple[tuple[str, ...], dict]] = field(default_factory=lambda: [
-        (("--pp",), {"type": int, "required": True, "help": "pole pairs p [1]"}),
+        (("--pp",), {"type": whole(1, 500), "required": True, "help": "pole pairs p [1]"}),
         (("--theta",), {"default": "theta", "help": "rotor angle column [rad]"}),
         (("--omega",), {"default": "omega", "help": "rotor speed column [rad/s]"}),
     ])
