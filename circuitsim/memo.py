@@ -49,6 +49,10 @@ def open_cache_dir() -> tuple[Path, str | None]:
         why = unsafe(d)
     except OSError as exc:
         why = f"it cannot be used ({exc.strerror})"
+        file = next((q for q in (d, *d.parents) if q.exists() and not q.is_dir()), None)
+        if file is not None:  # mkdir says 'File exists', which misleads
+            why = ("it is a file, not a folder" if file == d else
+                   f"{file}, a part of its path, is a file")
     return d, why
 
 

@@ -172,3 +172,20 @@ def test_info_lists_the_folder(folder, monkeypatch, capsys):
     assert main(["cache"]) == 0
     out = capsys.readouterr().out
     assert str(folder) in out and "model" in out
+
+
+def test_a_cache_path_that_is_a_file_is_said_so(tmp_path, monkeypatch, capsys):
+    """CIRCUITSIM_CACHE at a file: `cache info` reported '0 entries' and `clear` 'removed 0'
+    as if it were an empty folder, and a run warned with mkdir's 'File exists'."""
+    from circuitsim.memo import open_cache_dir
+
+    file = tmp_path / "a-file"
+    file.write_text("not a folder")
+    monkeypatch.setenv("CIRCUITSIM_CACHE", str(file))
+    for action in ("info", "clear"):
+        assert main(["cache", action]) == 2
+        assert "is a file, not a folder" in capsys.readouterr().err
+    assert open_cache_dir()[1] == "it is a file, not a folder"
+    monkeypatch.setenv("CIRCUITSIM_CACHE", str(file / "below"))
+    assert open_cache_dir()[1] == f"{file}, a part of its path, is a file"
+    assert file.read_text() == "not a folder"

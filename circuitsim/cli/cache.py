@@ -15,6 +15,9 @@ def _folder():
     from circuitsim.memo import cache_dir, unsafe
 
     folder = cache_dir()
+    if folder.exists() and not folder.is_dir():
+        raise cf.CacheError(f"the cache folder {folder} is a file, not a folder; point "
+                            f"CIRCUITSIM_CACHE at a folder only you can write")
     if folder.is_dir():
         why = unsafe(folder)
         if why is not None:
