@@ -134,3 +134,19 @@ def test_an_operating_point_on_a_parameter_that_overflows_says_so(capsys):
     assert rc == 1
     assert "operating point" in err and "beyond any physical value" in err
     assert not [w for w in caught if issubclass(w.category, RuntimeWarning)]
+
+
+def test_initial_values_on_a_gear_ratio_that_overflows_say_so(capsys, monkeypatch):
+    """A gear ratio of 1e300 squared overflows the Newton matrix of the initial values:
+    LAPACK's SVD failed with a LinAlgError's traceback."""
+    from pathlib import Path
+
+    from circuitsim.cli.main import main
+
+    monkeypatch.setenv("CIRCUITSIM_KERNELS", "python")
+    net = Path(__file__).resolve().parents[1] / "netlists" / "breadth" / "geared_load.yaml"
+    rc = main(["run", str(net), "--no-files", "--quiet", "--set", "N=1e300"])
+    err = capsys.readouterr().err
+    assert rc == 1
+    assert "no consistent initial values" in err and "not finite there" in err
+    assert "Gear.ratio = 1e+300 are beyond any physical value" in err

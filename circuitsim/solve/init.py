@@ -88,6 +88,12 @@ def _newton(model, t0: float, y: np.ndarray, yp: np.ndarray, p, nd: int, tol: fl
         if np.max(np.abs(f), initial=0.0) < tol * (1 + np.max(np.abs(y), initial=0.0)):
             return y, yp
         A, _, _ = _newton_matrix(model, t0, y, yp, p, nd)
+        if not (np.all(np.isfinite(A.data if not isinstance(A, np.ndarray) else A))
+                and np.all(np.isfinite(f))):  # LAPACK's SVD would fail with no words
+            raise SolverError(f"no consistent initial values at t = {t0:g} s: the equations "
+                              f"or their derivatives are not finite there (inf or NaN): a "
+                              f"value overflows the arithmetic, or a quantity is divided by "
+                              f"zero at the start")
         dz = _solve(A, -f)
         step = 1.0
         norm0 = np.linalg.norm(f)

@@ -160,7 +160,8 @@ def simulate(model, stop: float | None = None, params: Mapping[str, float] | Non
         start = consistent_start(model, run, params, p)
         if isinstance(start, str):
             return SimResult(run.t_eval[:0], np.zeros((n, 0)), np.zeros((n, 0)),
-                             model.state_names, Status.INIT_FAILED, start, 0, 0, model, p)
+                             model.state_names, Status.INIT_FAILED,
+                             start + huge_parameters(model, p), 0, 0, model, p)
         rec = Recorder(keep_after, decimate, progress)
         status, detail, nfev, njev = _integrate(model, run, p,
                                                 corners(model, values, run.stop), start, rec,
