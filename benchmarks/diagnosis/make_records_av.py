@@ -600,58 +600,15 @@ def label_place(label: str) -> tuple[str, str]:
 
 
 @dataclass(frozen=True)
-class DeclaredOff(recordkit.Plumbing):
-    """recordkit.Plumbing for records whose netlist declares some parameters wrong: every
-    run is at the record's TRUE values (``run``); the signatures, the marginal scaling, the
-    imprints of the catalog's effects (and of the sensors of the probes given only) and of
-    the freed parameters, and the CSV are those of the record's own ``probes``."""
-
-    def white_of(self, s: dict[str, Any]) -> dict[str, dict[str, float]]:
-        """The white sigma [probe unit] of the record's probes, in its regime."""
-        return {s["regime"]: {p: self.white[s["regime"]][p] for p in s["probes"]}}
-
-    def imprints(self, s: dict[str, Any]) -> recordkit.Imprints:
-        """The TRUE null run and the imprints on the record's own times and probes, once."""
-        if "imprints" not in s:
-            s["imprints"] = recordkit.Imprints(lambda regime: run(s, {}), self.white_of(s))
-        return s["imprints"]
-
-    def alternatives(self, s: dict[str, Any]) -> dict[str, np.ndarray]:
-        """Label -> (n, 1) imprint of each scalar catalog effect, per unit size, linearised
-        at the true null (the sensor effects of the record's probes only)."""
-        p = {**P, **s["ptrue"]}
-        return self.imprints(s).of_effects(
-            s["regime"], lambda fx: run(s, fx), scalar_effects(p), s["probes"],
-            sv.REGIMES[s["regime"]][1], self.sensor_steps, columns=True)
-
-    def harmonic_alternatives(self, s: dict[str, Any]) -> dict[str, np.ndarray]:
-        """Label -> (n, 2) imprints of each angle-locked catalog effect."""
-        return self.imprints(s).of_harmonics(s["regime"], lambda fx: run(s, fx),
-                                             self.harmonic_effects, self.harmonic_size)
-
-    def freed(self, s: dict[str, Any]) -> dict[str, np.ndarray]:
-        """``free:<name>`` -> (n, 1) imprint of a FREE_STEP relative step of each freed
-        parameter about its true value, once."""
-        if "freed" not in s:
-            imp = self.imprints(s)
-            s["freed"] = {
-                f"free:{name}": imp.imprint(s["regime"], run(
-                    s, {"p": {name: value * (1.0 + FREE_STEP)}}))[:, None]
-                for name, value in s["ptrue"].items()}
-        return s["freed"]
-
-    def declared_signature(self, s: dict[str, Any]) -> dict[str, float]:
-        """The declared errors' signature: the true null against the declared one, per
-        probe [white sigma]."""
-        dec, true = declared_run(s), self.imprints(s).null(s["regime"])
-        return {p: float(np.linalg.norm(true[p] - dec[p]) / w)
-                for p, w in self.white_of(s)[s["regime"]].items()}
+class LawSeparated(recordkit.DeclaredOff):
+    """recordkit.DeclaredOff, and for a two-effect record each effect's separation from the
+    other catalog kinds at its place (``law_separation_sigma``, ``law_separation``)."""
 
     def own_imprints(self, s: dict[str, Any]) -> list[np.ndarray]:
         """Each truth effect's own imprint, run alone [white sigma], once."""
         if "own" not in s:
             imp = self.imprints(s)
-            s["own"] = [imp.imprint(s["regime"], run(s, frag)) for frag, _ in s["parts"]]
+            s["own"] = [imp.imprint(s["regime"], self.run(s, frag)) for frag, _ in s["parts"]]
         return s["own"]
 
     def free_separation(self, s: dict[str, Any]) -> list[dict[str, Any]]:
@@ -669,7 +626,7 @@ class DeclaredOff(recordkit.Plumbing):
         best-scaled [white sigma]; ``own_sigma`` with the effect's own imprint in the
         neighbour's place, ``without_sigma`` with none."""
         imp, regime = self.imprints(s), s["regime"]
-        y = imp.imprint(regime, run(s, s["fx"]))
+        y = imp.imprint(regime, self.run(s, s["fx"]))
         freed = np.column_stack(list(self.freed(s).values()))
         own = self.own_imprints(s)
         alts = {**self.alternatives(s), **self.harmonic_alternatives(s)}
@@ -695,72 +652,11 @@ class DeclaredOff(recordkit.Plumbing):
                 "neighbours": near})
         return out
 
-    def scale_marginal(self, s: dict[str, Any]) -> None:
-        """Scale a marginal record's size so that its best probe's signature (about the
-        true null) is the set's marginal size: proportional passes until within 1 %."""
-        size = s["size"]
-        for _ in range(6):
-            clean = run(s, s["fx"])
-            best = max(self.imprints(s).signature(s["regime"], clean).values())
-            if abs(best / self.marginal_sigma - 1.0) < 0.01:
-                break
-            size = float(f"{size * self.marginal_sigma / best:.4g}")
-            s["parts"] = tuple(s["marginal"](size))
-            s["fx"], s["effects"] = recordkit.combine(s["parts"])
-            s.pop("own", None)
-        s["size"] = size
-
-    def truth_entry(self, s: dict[str, Any], sig: dict) -> dict:
-        """The record's entry of truth.json: its probes and their noise only, the freed
-        parameters and their declared and true values."""
-        entry = super().truth_entry(s, sig)
-        ns = {p: v for p, v in recordkit.noise_or_white(s, self.white).items()
-              if p in s["probes"]}
-        entry.update(probes=list(s["probes"]), noise=ns,
-                     noise_text=recordkit.noise_text(ns), free=list(s["free"]),
-                     declared_error={name: {"declared": P[name], "true": value}
-                                     for name, value in s["ptrue"].items()},
-                     declared_error_signature_sigma=self.declared_signature(s))
-        return entry
-
     def make(self, s: dict[str, Any], write: bool) -> dict:
-        """One record: its truth entry, and its CSV (the record's probes, the command in
-        the slow regime) when ``write``."""
-        regime, t = s["regime"], times(s)
-        if s["marginal"] is not None:
-            self.scale_marginal(s)
-        clean = run(s, s["fx"])
-        imp = self.imprints(s)
-        sig = self.declared_signature(s) if s["class"] == "null" else \
-            imp.signature(regime, clean)
-        entry = self.truth_entry(s, sig)
-        if s["class"] == "outside":
-            entry["unexplained_sigma"] = imp.unexplained(
-                regime, clean, {**self.alternatives(s), **self.harmonic_alternatives(s),
-                                **self.freed(s)})
-        if s["marginal"] is not None:
-            e = s["effects"][0]
-            same = {e["effect"], *(a["effect"] for a in e.get("also_accept", []))}
-            # each alternative with the freed parameters beside it, as the diagnosis fits
-            # them: what a freed parameter can make up between the two is no difference
-            freed = np.column_stack(list(self.freed(s).values()))
-            alts = {k: np.column_stack([a, freed]) for k, a in self.alternatives(s).items()}
-            entry["separation_sigma"] = imp.separation(regime, clean, alts, same)
-        if s["class"] in ("catalog", "two"):
-            entry["free_separation_sigma"] = self.free_separation(s)
-            entry.update(recordkit.places_entry(
-                s, t, imp, lambda _regime, tt, fx: run(s, fx, tt), PLACES, INERTIAS,
-                {**P, **s["ptrue"]}, BEYOND))
+        """recordkit.DeclaredOff's record, and a two-effect record's law separations."""
+        entry = super().make(s, write)
         if s["class"] == "two":
             entry["law_separation_sigma"] = self.law_separation(s)
-        if write:
-            rng = np.random.default_rng(s["seed"])
-            ns = recordkit.noise_or_white(s, self.white)
-            cols = {p: sv.add_noise(rng, t, clean[p], ns[p]) for p in s["probes"]}
-            if regime == "slow":
-                cols["u"] = clean["u"]
-            RECORDS.mkdir(exist_ok=True)
-            recordkit.write_csv(RECORDS / f"{s['id']}.csv", t, cols)
         return entry
 
 
@@ -772,10 +668,12 @@ def sim(regime: str, t: np.ndarray, fx: dict) -> dict[str, np.ndarray]:
 
 #: the plumbing of this set; each probe's sensor effects are its gain, its offset and its
 #: delay; the netlist declares no harmonic term of the catalog's kinds
-KIT = DeclaredOff(
+KIT = LawSeparated(
     split=SPLIT, motor=MOTOR, netlist=NETLIST, white=WHITE, simulator=sv, sim=sim,
     times=times, scalar_effects=(), harmonic_effects=HARMONIC_EFFECTS,
-    harmonic_size=harmonic_size, marginal_sigma=MARGINAL_SIGMA, declared=())
+    harmonic_size=harmonic_size, marginal_sigma=MARGINAL_SIGMA, declared=(),
+    run=run, declared_run=declared_run, params=P, effects_of=scalar_effects,
+    free_step=FREE_STEP, places=PLACES, inertias=INERTIAS, beyond=BEYOND)
 imprints = KIT.imprints
 make = KIT.make
 scale_marginal = KIT.scale_marginal
