@@ -226,36 +226,15 @@ def unbalance_hub(amp: float, phase: float) -> Part:
 outside = recordkit.outside
 
 
-def true_values(free: dict[str, float]) -> dict[str, float]:
-    """The record's true values [SI] of the parameters it frees, from their relative
-    errors (true = declared (1 + error)), to four significant digits."""
-    return {name: float(f"{P[name] * (1.0 + e):.4g}") for name, e in free.items()}
-
-
 def spec(rid: str, cls: str, regime: str, uneven: bool, parts=(), noise=None, note="",
          marginal=None, size=None, probes: tuple[str, ...] | None = None,
          free: dict[str, float] | None = None) -> dict[str, Any]:
-    """One record's specification (``recordkit.spec``), the probes it gives the diagnosis
-    (default: all of its regime's) and the declared parameters it frees with their true
-    values (``free``: name -> relative error of the true value over the declared)."""
-    s = recordkit.spec(rid, cls, regime, uneven, parts, noise, note, marginal, size)
-    s["probes"] = tuple(probes or sv.PROBES[regime])
-    free = dict(free or {})
-    if not 2 <= len(free) <= 3 or not all(0.02 <= abs(e) <= 0.06 for e in free.values()):
-        raise ValueError(f"{rid}: frees {free}")
-    signs = {e > 0 for e in free.values()}
-    if len(signs) < 2:
-        raise ValueError(f"{rid}: the declared errors all have one sign")
-    s["free"], s["ptrue"] = free, true_values(free)
-    for name in free:
-        for _, e in s["parts"]:
-            if (e["effect"], e["target"]) in TWINS[name] or \
-                    (e["effect"], None) in TWINS[name]:
-                raise ValueError(f"{rid}: {e['effect']} on {e['target']} twins freed {name}")
-        for frag, _ in s["parts"]:
-            if name in frag.get("p", {}):
-                raise ValueError(f"{rid}: an effect changes the freed {name}")
-    return s
+    """One record's specification (``recordkit.declared_spec``): the probes it gives the
+    diagnosis (default: all of its regime's) and the declared parameters it frees
+    (``free``: name -> relative error of the true value over the declared)."""
+    return recordkit.declared_spec(rid, cls, regime, uneven, parts, noise, note, marginal,
+                                   size, probes=probes or sv.PROBES[regime], free=free,
+                                   params=P, twins=TWINS, mixed_signs=True)
 
 
 def run(s: dict[str, Any], fx: dict, t: np.ndarray | None = None) -> dict[str, np.ndarray]:

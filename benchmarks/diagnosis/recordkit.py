@@ -82,6 +82,37 @@ def spec(rid: str, cls: str, regime: str, uneven: bool,
             "marginal": marginal, "size": size}
 
 
+def declared_spec(rid: str, cls: str, regime: str, uneven: bool, parts=(), noise=None,
+                  note: str = "", marginal=None, size=None, *, probes: Sequence[str],
+                  free: Mapping[str, float] | None, params: Mapping[str, float],
+                  twins: Mapping[str, Iterable[tuple[str, str | None]]],
+                  mixed_signs: bool = False) -> dict[str, Any]:
+    """A record's specification (``spec``) for a set whose netlist declares some values
+    wrong: the probes it gives the diagnosis and the declared parameters it frees with their
+    true values (``free``: name -> relative error of the true value over the declared
+    ``params``, 2-6 %, two or three of them, of both signs when ``mixed_signs``, to four
+    significant digits). Refused: an effect that is a freed parameter's twin (``twins``:
+    name -> (effect, target or None)) or that changes a freed parameter."""
+    s = spec(rid, cls, regime, uneven, parts, noise, note, marginal, size)
+    s["probes"] = tuple(probes)
+    free = dict(free or {})
+    if not 2 <= len(free) <= 3 or not all(0.02 <= abs(e) <= 0.06 for e in free.values()):
+        raise ValueError(f"{rid}: frees {free}")
+    if mixed_signs and len({e > 0 for e in free.values()}) < 2:
+        raise ValueError(f"{rid}: the declared errors all have one sign")
+    s["free"] = free
+    s["ptrue"] = {name: float(f"{params[name] * (1.0 + e):.4g}") for name, e in free.items()}
+    for name in free:
+        for _, e in s["parts"]:
+            if (e["effect"], e["target"]) in twins[name] or \
+                    (e["effect"], None) in twins[name]:
+                raise ValueError(f"{rid}: {e['effect']} on {e['target']} twins freed {name}")
+        for frag, _ in s["parts"]:
+            if name in frag.get("p", {}):
+                raise ValueError(f"{rid}: an effect changes the freed {name}")
+    return s
+
+
 def jittered_times(rng: np.random.Generator, fs: float, duration: float, jitter: float,
                    step: float = 1e-9) -> np.ndarray:
     """A fast acquisition's times [s]: the grid k/fs [Hz], each time but the first moved by
