@@ -1311,15 +1311,15 @@ def test_a_long_memory_under_white_noise_is_noise_a_low_line_in_white_noise_is_n
         assert not _long_memory(t, white_over_pink(seed)[1] + line), seed
 
 
-def _accepted_at(rec, order):
-    """The motor's declared model with a cogging of ``order`` accepted on the rotor, as the
-    search leaves it (``engine._accept``), and the search's log."""
+def _accepted_at(rec, order, effect="cogging"):
+    """The motor's declared model with ``effect`` (a cogging of ``order``) accepted on the
+    rotor, as the search leaves it (``engine._accept``), and the search's log."""
     from circuitsim.loop.diagnose.context import compile_raw
     from circuitsim.loop.diagnose.decide import judge, refit_trial
     from circuitsim.loop.diagnose.engine import _accept, fit_declared
 
     setup, state0 = fit_declared(cs.load(MOTOR), rec, [], None, None, 1e-8, 3, None)
-    cand = _candidate(build(state0.raw), "cogging", "rotor", order)
+    cand = _candidate(build(state0.raw), effect, "rotor", order)
     trial = refit_trial(setup, state0, [cand], {}, compile_raw(cand.apply(state0.raw)))
     judge(setup, state0, trial)
     log = {"rejected": [], "indistinct": [], "trials": {}, "tried": set()}
@@ -1348,6 +1348,36 @@ def test_an_accepted_harmonic_moves_to_the_neighbouring_order_that_fits_better()
     setup, state, log = _accepted_at(rec, 6)
     kept = _neighbour_orders(setup, state, log)
     assert kept is state and log["indistinct"] == [] and log["rejected"] == []
+
+
+def test_an_accepted_torque_moves_to_the_law_at_its_place_that_fits_better():
+    """engine._neighbour_laws: a dry friction of 0.5 mN*m hidden on the rotor, the search
+    left holding a viscous friction there (as fresh46's ax08 was left holding a breakaway
+    peak). The dry friction replaces it at its value (the motor's own friction declared
+    exactly), its evidence judged against the model without it, the viscous friction
+    rejected with the reason; a constant torque, which this record (the rotor never turns
+    back) cannot tell from a dry friction, is reported as indistinct. Started at the dry
+    friction, the model stays as it is and the same tie is said."""
+    from circuitsim.loop.diagnose.decide import BIC_MARGIN
+    from circuitsim.loop.diagnose.engine import _neighbour_laws
+
+    rec = make_record([("coulomb-friction", "rotor", None, [5e-4])], seed=3)
+    assert np.min(rec["speed"][1:]) > 0.0
+    tie = ("coulomb-friction:rotor and force-offset:rotor explain this record almost "
+           "equally well")
+    setup, state, log = _accepted_at(rec, None, "viscous-friction")
+    moved = _neighbour_laws(setup, state, log)
+    (choice,) = moved.chosen
+    assert choice.candidate.key == "coulomb-friction:rotor"
+    assert moved.fit.params["coulomb_friction_rotor_c"] == pytest.approx(5e-4, rel=0.01)
+    assert log["trials"][choice.candidate.key].delta_bic < -BIC_MARGIN
+    assert [r["reason"] for r in log["rejected"]] == [
+        "replaced by another law at its place, coulomb-friction:rotor, which fits better"]
+    assert any(t.startswith(tie) for t in log["indistinct"])
+    setup, state, log = _accepted_at(rec, None, "coulomb-friction")
+    kept = _neighbour_laws(setup, state, log)
+    assert kept is state and log["rejected"] == []
+    assert any(t.startswith(tie) for t in log["indistinct"])
 
 
 def _delay_case(stage: str, seed: int, phi: float = 0.0, over_error: float = 0.0):

@@ -145,6 +145,7 @@ def diagnose(netlist, record, free: Sequence[str] = (), *, probes: Sequence[str]
     state = _one_factor(setup, state0, state, log)
     # only the harmonics that stay are named, and a stand-in's orders cost nothing
     state = _neighbour_orders(setup, state, log)
+    state = _neighbour_laws(setup, state, log)
     # last: the final model's residual is the one a person reads
     state = _where(setup, state0, state, log)
     # what the search spent outside screening and refits: the backward step and swaps
@@ -344,6 +345,11 @@ def _screen_round(setup: Setup, state: ModelState, log: dict[str, Any]) -> list[
                                   else (slow, wave),
                                   lambda fn: noise[id(fn)], BIC_MARGIN)
            if s is not None and s.share > 0]
+    # the first start each candidate was screened with: a law swapped in at the end
+    # (``_neighbour_laws``) starts from it when no refit of it is known
+    starts = log.setdefault("starts", {})
+    for s in out:
+        starts.setdefault(s.proposal.candidate.key, dict(s.start))
     # one whose gain cannot pay the BIC margin as a white-noise likelihood ratio in the space
     # it was measured in will not pass after a refit either; the rest are ranked by the share
     # of their own space's residual they explain (a speed effect seen in slow features and a
@@ -893,7 +899,8 @@ def _neighbour_orders(setup: Setup, state: ModelState, log: dict[str, Any]) -> M
                     better = (trial, gain)
                 elif gain < BIC_MARGIN:
                     ties.append((other.key, gain))
-            taken = None if better is None else _take_order(setup, state, i, better[0], log)
+            taken = None if better is None else _take_order(
+                setup, state, i, better[0], log, "its neighbouring order")
             if taken is None:
                 _say_ties(choice.candidate.key, ties, log)
                 break
@@ -901,14 +908,103 @@ def _neighbour_orders(setup: Setup, state: ModelState, log: dict[str, Any]) -> M
     return state
 
 
-def _say_ties(key: str, ties: list[tuple[str, float]], log: dict[str, Any]) -> None:
-    """Each order within the BIC margin of the harmonic ``key`` kept, as indistinct from it
-    (once: a round's refits may have said so already)."""
+#: the laws one torque on one body may follow: the round that chose one of them compared it
+#: with the others in the company of that round, and an effect accepted later may leave
+#: another law the better fit (fresh46's ax08: a breakaway peak on the hub chosen before a
+#: sensor's delay, where a dry friction fits the record with three parameters fewer)
+LAW_KINDS = ("coulomb-friction", "viscous-friction", "stribeck-friction", "force-offset")
+
+
+def _neighbour_laws(setup: Setup, state: ModelState, log: dict[str, Any]) -> ModelState:
+    """Each accepted torque of ``LAW_KINDS`` refitted under the other laws at its place,
+    with every other effect in place. A law that lowers the BIC by the margin through both
+    noise filters (a swap's test), whose parameters are constants of the record, replaces
+    it (the best such), and the backward step then re-tests the others; one within the
+    margin is reported as indistinct. Each body's torque is revised once."""
+    done: set[tuple[str, str]] = set()
+    while True:
+        i = next((j for j in range(len(state.chosen)) if _law_open(state, j, done)), None)
+        if i is None:
+            return state
+        old = state.chosen[i].candidate
+        done.add((old.effect, old.target))
+        others = _law_neighbours(state, i, log)
+        trials = _refitted(setup, state, [
+            _replaced(setup, state, i, o, _known_start(o, log)) for o in others], "law")
+        own = whiteners_of(state.fit.residuals, setup.probes)
+        gains: dict[str, tuple[float, ModelState]] = {}
+        for other, trial in zip(others, trials, strict=True):
+            if trial is not None:
+                gain = _swap_gain(setup, state, trial, len(trial.free) - len(state.free), own)
+                setup.log(f"  law {other.key} in place of {old.key}: ΔBIC {gain:.1f}")
+                gains[other.key] = (gain, trial)
+        best = min(gains, key=lambda k: gains[k][0], default=None)
+        taken = None if best is None or gains[best][0] >= -BIC_MARGIN else _take_order(
+            setup, state, i, gains[best][1], log, "another law at its place,")
+        # the laws within the margin of the one the model holds in the end are told
+        # apart by nothing in this record
+        kept, base = (old.key, 0.0) if taken is None else (best, gains[best][0])
+        _say_ties(kept, [(k, g - base) for k, (g, _) in gains.items()
+                         if k != kept and g - base < BIC_MARGIN], log, "laws")
+        if taken is not None:
+            done.add((taken.chosen[i].candidate.effect, old.target))
+            state = _backward(setup, taken, log)
+
+
+def _law_open(state: ModelState, i: int, done: set[tuple[str, str]]) -> bool:
+    """Whether the ``i``-th choice is a torque whose law ``_neighbour_laws`` still revises:
+    not a correction, not revised yet, and not the base of a refinement kept beside it (a
+    Coulomb friction whose breakaway peak is accepted too)."""
+    c = state.chosen[i]
+    kind = (c.candidate.effect, c.candidate.target)
+    return (not c.correction and c.candidate.effect in LAW_KINDS and kind not in done and
+            not any(REFINES.get(o.candidate.effect, ("",))[0] == c.candidate.effect and
+                    o.candidate.target == c.candidate.target for o in state.chosen))
+
+
+def _law_neighbours(state: ModelState, i: int, log: dict[str, Any]) -> list[Any]:
+    """The other ``LAW_KINDS`` on the ``i``-th choice's body in the model without it (a
+    breakaway peak only where a friction is declared or accepted there), each at its first
+    start, and none the model holds already."""
+    old = state.chosen[i].candidate
+    rest = [c for j, c in enumerate(state.chosen) if j != i]
+    held = {(c.candidate.effect, c.candidate.target) for c in rest}
+    starts: dict[Any, list[Any]] = {}
+    for c in candidates(build(_base_raw(state, rest))):
+        if (c.target == old.target and c.effect in LAW_KINDS and c.effect != old.effect and
+                (c.effect, c.target) not in held):
+            starts.setdefault(c.kind, []).append(c)
+    # of a shape's starts (a breakaway's speeds), the one the search refitted or screened
+    return [max(alts, key=lambda c: (c.key in log["trials"] or _in_rounds(c, log),
+                                     c.key in log.get("starts", {})))
+            for alts in starts.values()]
+
+
+def _known_start(candidate: Any, log: dict[str, Any]) -> dict[str, float]:
+    """``candidate``'s parameters as a refit of it found them in the search, or else as
+    its first screen estimated them [SI]; empty when it was never screened."""
+    t = log["trials"].get(candidate.key) or _in_rounds(candidate, log)
+    if t is not None:
+        return {n: t.fit.params[n] for n in candidate.free}
+    start = log.get("starts", {}).get(candidate.key, {})
+    return {n: start[n] for n in candidate.free if n in start}
+
+
+def _in_rounds(candidate: Any, log: dict[str, Any]) -> Any:
+    """A round's refit of ``candidate`` (a ``Trial``), None when no round refitted it."""
+    return next((a for alts in log.get("rounds", {}).values() for a in alts
+                 if a.candidates[0].key == candidate.key), None)
+
+
+def _say_ties(key: str, ties: list[tuple[str, float]], log: dict[str, Any],
+              what: str = "orders") -> None:
+    """Each order (or law: ``what``) within the BIC margin of the choice ``key`` kept, as
+    indistinct from it (once: a round's refits may have said so already)."""
     for other, gain in ties:
         if not any(f"{key} " in t and f"{other} " in t for t in log["indistinct"]):
             log["indistinct"].append(
                 f"{key} and {other} explain this record almost equally well (ΔBIC "
-                f"{gain:+.1f} from one to the other): the data cannot tell the two orders "
+                f"{gain:+.1f} from one to the other): the data cannot tell the two {what} "
                 f"apart")
 
 
@@ -965,11 +1061,12 @@ def _replaced(setup: Setup, state: ModelState, i: int, other: Any,
 
 
 def _take_order(setup: Setup, state: ModelState, i: int, new: ModelState,
-                log: dict[str, Any]) -> ModelState | None:
-    """``new`` (the ``i``-th harmonic at another order) in place of ``state``, its evidence
+                log: dict[str, Any], what: str) -> ModelState | None:
+    """``new`` (the ``i``-th choice replaced: a harmonic at another order, a torque by
+    another law at its place, ``what`` says which) in place of ``state``, its evidence
     judged against the model without it, as an acceptance's is, and its stability as the
     stand-in stage judges it; None (``state`` stays) when that model cannot be refitted or
-    the new order's parameters are not constants of the record."""
+    the new choice's parameters are not constants of the record."""
     old, other = state.chosen[i].candidate, new.chosen[i].candidate
     reduced = _without(setup, new, [c for j, c in enumerate(new.chosen) if j != i])
     if reduced is None:
@@ -981,8 +1078,8 @@ def _take_order(setup: Setup, state: ModelState, i: int, new: ModelState,
         return None
     setup.log(f"revised: {other.key} replaces {old.key}")
     log["rejected"].append({"effect": old.effect, "target": old.target,
-                            "reason": f"replaced by its neighbouring order {other.key}, "
-                                      f"which fits better"})
+                            "reason": f"replaced by {what} {other.key}, which fits "
+                                      f"better"})
     log["trials"][other.key] = trial
     if verdict is not None:
         log.setdefault("stability", {})[other.key] = verdict
