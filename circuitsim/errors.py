@@ -65,3 +65,18 @@ class SolverError(CircuitsimError):
 
 class CircuitWarning(UserWarning):
     """Physics warnings (non-conserving coupling, inconsistent initial values)."""
+
+
+def spoken(name: str) -> str:
+    """A model variable's name as a message says it: ``der(x)`` as d(x)/dt, ``der(der(x))``
+    as d²(x)/dt², and the index reduction's ``dummy(...)`` as the derivative it stands for
+    (a person reads the circuit's names, not the compiler's)."""
+    core = name[6:-1] if name.startswith("dummy(") and name.endswith(")") else name
+    order = 0
+    while core.startswith("der(") and core.endswith(")"):
+        core, order = core[4:-1], order + 1
+    if order == 0:
+        return core
+    power = "" if order == 1 else str(order).translate(str.maketrans("0123456789",
+                                                                       "⁰¹²³⁴⁵⁶⁷⁸⁹"))
+    return f"d{power}({core})/dt{power}"

@@ -127,3 +127,26 @@ def test_connector_cutset_with_filter_starts_from_rest(compile_text, lf):
     _t, i, w, *_ = simulate_kim_lsoda(t_stop=0.02, t_eval=res.t, lf=lf)
     assert np.max(np.abs(res["speed"] - w)) < 1e-5 * np.max(np.abs(w))
     assert np.max(np.abs(res["i_motor"] - i)) < 1e-4 * np.max(np.abs(i))
+
+
+def test_messages_name_a_dummy_derivative_as_the_derivative_it_stands_for(compile_text):
+    """errors.spoken: the index reduction's unknowns (``dummy(der(rotor.w))``) are said in
+    a failure's words as the derivative they are, never in the compiler's notation."""
+    from circuitsim.errors import spoken
+
+    model = compile_text(f"""
+        components:
+          - {{name: V1, type: V, p: a, n: gnd, V: {{sine: {{amplitude: {A} V, freq: {F} Hz}}}}}}
+          - {{name: M, type: emf, p: a, n: gnd, shaft: rotor, k_t: 0.05}}
+          - {{name: Jr, type: inertia, shaft: rotor, J: 1e-5}}
+        probes: {{speed: rotor.w}}
+        analysis: {{stop: 1 ms, step: 20 us}}
+    """)
+    inner = [n for n in model.state_names if n.startswith("dummy(")]
+    assert inner
+    for name in inner:
+        words = spoken(name)
+        assert "dummy" not in words and "der(" not in words and words.startswith("d")
+    assert spoken("dummy(der(der(Var.vc)))") == "d²(Var.vc)/dt²"
+    assert spoken("der(c.v)") == "d(c.v)/dt"
+    assert spoken("rotor.w") == "rotor.w"

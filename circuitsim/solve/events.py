@@ -24,7 +24,7 @@ import warnings
 
 import numpy as np
 
-from circuitsim.errors import SolverError
+from circuitsim.errors import SolverError, spoken
 from circuitsim.solve.init import consistent_initial
 from circuitsim.solve.kernel_lib import BAND_ABS, BAND_REL, ROOT_RETURN
 from circuitsim.solve.watch import Runaway
@@ -304,6 +304,6 @@ def switch_at(sw: Switching, sol, t: float, y: np.ndarray, yp: np.ndarray, state
 
 def _failure(names: tuple[str, ...], sol, t_fail: float) -> str:
     y, yp = np.asarray(sol.y), np.asarray(sol.yp)
-    name = names[int(np.argmax(np.abs(yp[-1])))] if y.size else "?"
+    name = spoken(names[int(np.argmax(np.abs(yp[-1])))]) if y.size else "?"
     return (f"at t = {t_fail:.6g} s ({str(sol.message).strip()}); fastest-changing variable: "
             f"{name}. Try smaller tolerances or max_step, or run `circuitsim check NETLIST`")

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from circuitsim.errors import SolverError
+from circuitsim.errors import SolverError, spoken
 
 
 def _newton_matrix(model, t0: float, y: np.ndarray, yp: np.ndarray, p, nd: int):
@@ -111,7 +111,7 @@ def _newton(model, t0: float, y: np.ndarray, yp: np.ndarray, p, nd: int, tol: fl
     worst = int(np.argmax(np.abs(f)))
     raise SolverError(f"no consistent initial values at t = {t0:g} s: residual of "
                       f"equation {worst} stays at {f[worst]:.3g} (state "
-                      f"{model.state_names[worst] if worst < n else '?'}). Try "
+                      f"{spoken(model.state_names[worst]) if worst < n else '?'}). Try "
                       f"init: op, or give initial values")
 
 

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from circuitsim.errors import SolverError
+from circuitsim.errors import SolverError, spoken
 from circuitsim.netlist.load import analysis_problem
 from circuitsim.solve import events
 from circuitsim.solve.init import check_initial, consistent_initial, initial_state
@@ -317,7 +317,7 @@ def singular_pencil(model, p: tuple, t: float, y, yp, stop: float) -> str:
     except (ValueError, np.linalg.LinAlgError, FloatingPointError):
         return ""
     null = np.abs(vt[-1])
-    names = [model.state_names[k] for k in np.flatnonzero(null > 0.1 * null.max())][:6]
+    names = [spoken(model.state_names[k]) for k in np.flatnonzero(null > 0.1 * null.max())][:6]
     return (f". The equations are singular here, whatever the step: they leave "
             f"{', '.join(names)} undetermined (a source or coupling whose value cancels "
             f"another's, such as a gain of 1 fed back on its own input, is the usual cause); "
@@ -557,13 +557,13 @@ def _failure(system: System, sol, t_fail: float, rtol: float, atol: float) -> st
         if bad.any():  # IDA's norms overflow: its own words would not say so
             k = int(np.argmax(bad))
             v, r = y[-1][k], yp[-1][k]
-            return (f"at t = {t_fail:.6g} s {system.names[k]} = {v:.4g} (its rate {r:.4g}): "
+            return (f"at t = {t_fail:.6g} s {spoken(system.names[k])} = {v:.4g} (its rate {r:.4g}): "
                     f"values this large (or not a number) overflow the integrator's arithmetic. A parameter "
                     f"far from its physical value does this; check the netlist's parameters "
                     f"and --set")
         with np.errstate(all="ignore"):
             rate = np.abs(yp[-1]) / (rtol * np.abs(y[-1]) + atol)
-        name = system.names[int(np.argmax(rate))]
+        name = spoken(system.names[int(np.argmax(rate))])
         if system.why_singular is not None:
             singular = system.why_singular(t_fail, y[-1], yp[-1])
     if singular:

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from circuitsim.errors import SolverError
+from circuitsim.errors import SolverError, spoken
 from circuitsim.solve.watch import huge_parameters
 
 N_AVERAGE = 64  # sample angles per turn: exact for ripple harmonics up to order 63
@@ -87,7 +87,7 @@ def operating_point(model, params: Mapping[str, float] | None = None, t: float =
         return OperatingPoint(y, yp, names, it)
     worst = int(np.argmax(np.abs(f)))
     raise SolverError(f"operating point: Newton did not converge in {max_iter} iterations; "
-                      f"largest residual {f[worst]:.3g} in the equation of {names[worst]}. Try "
+                      f"largest residual {f[worst]:.3g} in the equation of {spoken(names[worst])}. Try "
                       f"starting from rest (init: rest), or ramp the sources (source "
                       f"stepping){huge_parameters(model, p)}")
 
@@ -108,7 +108,7 @@ def _dc_newton(averaged, y: np.ndarray, yp: np.ndarray, cols_y: list[int], free:
             worst = int(np.argmax(np.abs(f)))
             raise SolverError(
                 f"operating point: the DC Jacobian is singular (no DC path for the quantity "
-                f"of equation {worst}, near {names[worst] if worst < n else '?'}). A node "
+                f"of equation {worst}, near {spoken(names[worst]) if worst < n else '?'}). A node "
                 f"reached only through capacitors, or a shaft with no damping, has no DC "
                 f"solution: add a bleed resistor or damper, or start from rest") from None
         step, norm0 = 1.0, np.linalg.norm(f)

@@ -7,6 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from circuitsim.errors import spoken
 from circuitsim.solve.ac import _observe_batch, _output_index
 from circuitsim.solve.op import _angles, operating_point
 
@@ -172,7 +173,7 @@ def _check_symmetric(model, p: tuple, y: np.ndarray, yp: np.ndarray, angles: lis
             k = int(np.argmax(np.abs(ra - rb) / scale))
             raise ValueError(
                 f"the circuit is not the same after 1/{order:g} of a turn: the equation of "
-                f"{model.state_names[k]} changes when the shaft angle moves by 2 pi/{order:g} "
+                f"{spoken(model.state_names[k])} changes when the shaft angle moves by 2 pi/{order:g} "
                 f"(an angle-locked term whose order {order:g} does not divide), so no steady "
                 f"state repeats every 1/{order:g} turn; give an --order that divides every "
                 f"angle-locked order of the circuit (1, a whole turn, always does)")
@@ -214,7 +215,7 @@ def _closes(shoot: _Shooting, r: np.ndarray, first: np.ndarray, it: int) -> None
         return
     from circuitsim.errors import SolverError
 
-    names = [shoot.model.state_names[k] for k in shoot.free] + ["the shaft angle"]
+    names = [spoken(shoot.model.state_names[k]) for k in shoot.free] + ["the shaft angle"]
     k = int(np.argmax(np.abs(r)))
     raise SolverError(f"periodic steady state: there is none: {names[k]} ends each period "
                       f"{r[k]:+.4g} from where it started, whatever the start. A source with "

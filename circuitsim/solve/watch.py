@@ -28,7 +28,7 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 
-from circuitsim.errors import SolverError
+from circuitsim.errors import SolverError, spoken
 
 #: [evaluations] the pace is measured over this many residual evaluations
 WINDOW = 100_000
@@ -107,7 +107,7 @@ class Watch:
         with np.errstate(all="ignore"):
             rate = np.abs(np.asarray(yp)) / (self.rtol * np.abs(np.asarray(y)) + self.atol)
         k = int(np.nanargmax(rate)) if np.isfinite(rate).any() else 0
-        name = self.names[k] if k < len(self.names) else "?"
+        name = spoken(self.names[k]) if k < len(self.names) else "?"
         return (f"at t = {t:.6g} s the run gains {gained:.3g} s of simulated time per "
                 f"{WINDOW} residual evaluations and slows down: reaching the stop time "
                 f"{self.stop:g} s at that pace needs about {projected:.2g} more, and the pace "
