@@ -301,3 +301,23 @@ def test_op_holds_the_sources_at_the_instant(compile_text, kind):
     res = model.simulate()
     dual = x * amp * 2 * np.pi * f * np.cos(2 * np.pi * f * res.t)  # C dV/dt, or L dI/dt
     assert np.max(np.abs(res["x"] - dual)) <= 1e-9 * np.max(np.abs(dual))
+
+
+def test_pss_over_a_whole_turn_of_the_filtered_motor_is_the_orbit_of_order_8():
+    """Kim & Kim's case 4 (connector and filter): shooting over a whole turn at the default
+    rtol 1e-10 wandered at 1e-9 of the speed, Newton's noise floor, and stopped after 20
+    steps; the map is integrated more finely until Newton converges. Its orbit is order 8's:
+    eight times the period, the same mean speed and ripple."""
+    import warnings
+
+    import circuitsim as cs
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        model = cs.compile(cs.load(NETLISTS / "kim2024" / "case4.yaml"))
+    whole = periodic_steady_state(model, order=1)
+    eighth = periodic_steady_state(model, order=8)
+    assert whole.period == pytest.approx(8 * eighth.period, rel=1e-8)
+    assert whole["speed"].mean() == pytest.approx(eighth["speed"].mean(), rel=1e-9)
+    assert whole.harmonic("i_total", 8)[1] == pytest.approx(
+        eighth.harmonic("i_total", 1)[1], rel=1e-6)
