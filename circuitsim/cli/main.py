@@ -93,9 +93,11 @@ def summarize(res, window: float) -> dict:
     line of a transient, such as a decaying ring, is still given for information).
     """
     from circuitsim import signal
+    from circuitsim.solve.alias import Aliasing
 
     out = {}
     m = res.window(window)
+    aliasing = Aliasing(res, window)
     for name in res.probes:
         x = res[name]
         entry = {"mean": float(x[m].mean()), "final": float(x[-1]),
@@ -105,6 +107,11 @@ def summarize(res, window: float) -> dict:
             entry["mean"] = r.mean
             entry["ripple"] = {"state": r.state, "frequency": r.frequency,
                                "amplitude": r.amplitude, "p_value": r.p_value}
+            alias = aliasing.of(r.frequency) if r.state != "none" else None
+            if alias is not None:  # the grid's line is not the circuit's: never its number
+                entry["ripple"].update(state="aliased", frequency=alias.true,
+                                       seen=alias.seen, order=alias.order,
+                                       shaft=alias.shaft, words=alias.words())
         except ValueError:  # too few samples in the window to say anything
             entry["ripple"] = {"state": "too few points", "points": int(m.sum()),
                                "frequency": 0.0, "amplitude": 0.0, "p_value": 1.0}
@@ -116,6 +123,9 @@ def _ripple_text(e: dict) -> str:
     r, u = e["ripple"], e["unit"]
     if r["state"] == "periodic":
         return f"{r['frequency']:.6g} Hz, {_fmt(r['amplitude'], u)} peak"
+    if r["state"] == "aliased":
+        return (f"aliased: order {r['order']} of {r['shaft']} at {r['frequency']:.6g} Hz, seen "
+                f"at {r['seen']:.6g} Hz on the output grid (lower the step)")
     if r["state"] == "too few points":  # not 'no ripple': nothing could be seen
         return f"{r['points']} output point(s) in the window: too few to judge (lower the step)"
     return "settling" if r["state"] == "settling" else "no periodic ripple"
@@ -217,7 +227,16 @@ def cmd_run(args) -> int:
         if args.json:
             print(json.dumps({"success": False, "message": res.message, "files": files}))
         return 1
-    _print_run(args, net, res, summarize(res, args.window), msgs, files)
+    summary = summarize(res, args.window)
+    said = set()
+    for name, e in summary.items():
+        words = e["ripple"].get("words")
+        if words and words not in said:
+            said.add(words)
+            msgs.append(f"{name}: its ripple on the output grid is {words}")
+            if not args.json:
+                print(f"warning: {msgs[-1]}", file=sys.stderr)
+    _print_run(args, net, res, summary, msgs, files)
     return 0
 
 

@@ -139,6 +139,7 @@ def _fmt(v: float) -> str:
 def _run_one(model, run: Run, metrics: Metrics) -> dict[str, Any]:
     """Worker: simulate one grid point and reduce it to a row (never raises)."""
     from circuitsim import signal
+    from circuitsim.solve.alias import Aliasing
     from circuitsim.solve.energy import energy_audit
     from circuitsim.solve.route import many_solves
 
@@ -159,6 +160,7 @@ def _run_one(model, run: Run, metrics: Metrics) -> dict[str, Any]:
     if not res.success or res.t.size < 16:
         return row
     w = res.window(metrics.window)
+    aliasing = Aliasing(res, metrics.window)
     for name in metrics.probes or res.probes:
         x = res[name]
         try:
@@ -172,6 +174,11 @@ def _run_one(model, run: Run, metrics: Metrics) -> dict[str, Any]:
             # whether the window holds a periodic steady state at all (see ripple_summary):
             # the columns above fit a sine whatever the window holds
             row[f"{name}.ripple_state"] = signal.ripple_summary(res.t[w], x[w]).state
+            alias = None if metrics.order is not None else aliasing.of(h.frequency)
+            if alias is not None:  # the grid's line is not the circuit's (solve/alias.py)
+                row[f"{name}.ripple_freq"] = alias.true
+                row[f"{name}.ripple_state"] = "aliased"
+                row["message"] = f"{name}: its ripple on the output grid is {alias.words()}"
         except ValueError as exc:
             row[f"{name}.mean"] = float(x[w].mean())
             row["message"] = f"{name}: {exc}"
