@@ -74,3 +74,14 @@ def test_a_sweep_row_says_its_ripple_is_an_alias(write_netlist, tmp_path, capsys
     assert row["w.ripple_state"] == "aliased"
     assert float(row["w.ripple_freq"]) == pytest.approx(F3, rel=1e-4)
     assert "order-3 ripple of s" in row["message"]
+
+
+def test_the_apis_dominant_ripple_warns_when_it_is_an_alias(compile_text):
+    from circuitsim.errors import CircuitWarning
+
+    res = compile_text(SHAFT.format(law=LAW, step="1 ms")).simulate()
+    with pytest.warns(CircuitWarning, match="order-3 ripple of s"):
+        h = res.harmonic("w")
+    assert h.frequency == pytest.approx(1000 - F3, rel=1e-3)  # the samples' line, said so
+    with pytest.raises(ValueError, match="Nyquist"):  # asked for by its order: refused
+        res.harmonic("w", order=3)

@@ -130,13 +130,26 @@ class SimResult:
         """Frequency [Hz] and amplitude of one harmonic of a probe over the steady window.
 
         ``order`` counts per shaft revolution (the 8th order of a 2-pole 8-slot motor);
-        ``frequency`` [Hz] is a guess refined by the fit; neither: the dominant ripple.
+        ``frequency`` [Hz] is a guess refined by the fit; neither: the dominant ripple (a
+        CircuitWarning when that line is a shaft-locked ripple the output grid folds down:
+        ``solve/alias.py``).
         """
         m = self.window(window)
         if order is not None:
             frequency = order * self.shaft_frequency(window, shaft)
         if frequency is None:
-            return signal.dominant_ripple(self.t[m], self[name][m])
+            h = signal.dominant_ripple(self.t[m], self[name][m])
+            from circuitsim.solve.alias import Aliasing
+
+            alias = Aliasing(self, window).of(h.frequency)
+            if alias is not None:
+                import warnings
+
+                from circuitsim.errors import CircuitWarning
+
+                warnings.warn(f"{name}: its dominant ripple on the output grid is "
+                              f"{alias.words()}", CircuitWarning, stacklevel=2)
+            return h
         return signal.harmonic(self.t[m], self[name][m], near=frequency)
 
     def to_dataframe(self, names: list[str] | None = None):
