@@ -223,6 +223,19 @@ def test_a_fit_warns_of_a_probe_it_meets_only_scaled_and_of_a_late_clock(motor):
     assert not fit_record(model, rec, [], reduce=False).warnings
 
 
+@pytest.mark.parametrize("scale", [1e30, 1e-30, -1e20])
+def test_a_column_scaled_far_beyond_any_unit_is_said(motor, scale):
+    """A column 1e30 times the model's run: record - residual gave the model back as 0 (the
+    run is lost below the column's rounding), so no scale was said and the fit's table read
+    an NRMSE of 2.6 with no reason. The model's own run is used, and the sizes divided out
+    before their squares (which overflow at 1e160)."""
+    _, model, run = motor
+    rec = _record(run)
+    scaled = Record(rec.t, {"speed": rec["speed"], "i": scale * rec["i"]}, "scaled.csv")
+    fit = fit_record(model, scaled, [], reduce=False)
+    assert any(w.startswith(f"the record's i is {scale:.4g} times") for w in fit.warnings)
+
+
 def test_an_undetermined_parameter_reads_as_such_in_the_fit_table():
     """A standard error of ten times the estimate or more is '>1000%', in its own column."""
     import dataclasses as dc

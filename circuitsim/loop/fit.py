@@ -960,8 +960,10 @@ def fit_record(model, record: Record, free: Sequence[str], *,
     prob.stage = "uncertainty"
     result = prob.result(z, step, ok, msg, nfev, stages)
     if refuse_slip:  # a unit's slip refused; a clock or a scale, the user's or not, said
-        slip.refuse(model, record, result.residuals)
-        notes = (*result.warnings, *slip.hints(model, record, result.residuals, result.error))
+        runs = {p: result.sim[p] for p in result.residuals}
+        slip.refuse(model, record, result.residuals, runs)
+        notes = (*result.warnings, *slip.hints(model, record, result.residuals, result.error,
+                                               runs))
         result = dataclasses.replace(result, warnings=notes)
     return dataclasses.replace(result, reduction=reduction)
 

@@ -70,18 +70,20 @@ def factors(unit: str) -> tuple[tuple[float, str], ...]:
     return ((-1.0, SIGN), *units, *((-f, f"{why}, with the sign reversed") for f, why in units))
 
 
-def refuse(model, record, residuals: Mapping[str, np.ndarray]) -> None:
+def refuse(model, record, residuals: Mapping[str, np.ndarray],
+           runs: Mapping[str, np.ndarray] | None = None) -> None:
     """Raise DataError naming the record when ``slip_of`` finds a slip on any probe of
-    ``residuals`` (record - the fitted ``model``)."""
+    ``residuals`` (record - the fitted ``model``, whose run is ``runs``)."""
     from circuitsim.loop.record import DataError
 
-    slip = slip_of(record, residuals, list(residuals), model.meta.get("units", {}))
+    slip = slip_of(record, residuals, list(residuals), model.meta.get("units", {}), runs)
     if slip is not None:
         raise DataError(f"{record.path}: {slip}")
 
 
 def slip_of(record, residuals: Mapping[str, np.ndarray], probes: Sequence[str],
-            units: Mapping[str, str]) -> str | None:
+            units: Mapping[str, str], runs: Mapping[str, np.ndarray] | None = None
+            ) -> str | None:
     """What a record of ``probes`` reads off by, from the model's fit (``residuals``:
     record - model on the record's grid), or None when the model is not off by a unit's
     factor or a sign on any probe. A probe whose residual is not on the record's grid (a
@@ -92,7 +94,7 @@ def slip_of(record, residuals: Mapping[str, np.ndarray], probes: Sequence[str],
     if t.size > 1 and float(t[0]) > float(t[-1] - t[0]):
         return None
     found = []
-    for p, y, m, g, left in _scales(record, residuals, probes):
+    for p, y, m, g, left in _scales(record, residuals, probes, runs):
         # of the factors near g that scaling mends (their windows overlap: 57.3 and 60),
         # the one that mends most
         near = [(float(np.sum((y - f * m) ** 2)), f, why)
@@ -112,24 +114,34 @@ def slip_of(record, residuals: Mapping[str, np.ndarray], probes: Sequence[str],
             "lacks), the netlist")
 
 
-def _scales(record, residuals: Mapping[str, np.ndarray], probes: Sequence[str]):
+def _scales(record, residuals: Mapping[str, np.ndarray], probes: Sequence[str],
+            runs: Mapping[str, np.ndarray] | None = None):
     """Per probe that can be judged: its name, the record's column y, the model's run m on
-    the record's grid (y - residual), the least-squares factor g from m to y [-] and the
-    misfit left as it stands (the residual's sum of squares). A probe whose residual is not
-    on the record's grid (a caller's mistake) or whose model is flat is left out."""
+    the record's grid (``runs``' where given, else y - residual), the least-squares factor
+    g from m to y [-] and the misfit left as it stands (the residual's sum of squares), all
+    but g divided by the largest magnitude of y and m (a column 1e30 times the model's
+    loses the model in y - residual, and its squares overflow). A probe whose residual is
+    not on the record's grid (a caller's mistake) or whose model is flat is left out."""
     for p in probes:
         y = np.asarray(record[p], float)
         r = np.asarray(residuals.get(p, ()), float)
         if r.shape != y.shape:
             continue
-        m = y - r
+        m = np.asarray(runs[p], float) if runs is not None and p in runs else y - r
+        if m.shape != y.shape:
+            m = y - r
+        size = float(np.max(np.abs(np.concatenate([y, m])), initial=0.0))
+        if not (math.isfinite(size) and size > 0.0):
+            continue
+        y, m, r = y / size, m / size, r / size
         mm, left = float(m @ m), float(r @ r)
         if mm > 0.0 and math.isfinite(mm) and math.isfinite(left):
             yield p, y, m, float(y @ m) / mm, left
 
 
 def scale_hints(record, residuals: Mapping[str, np.ndarray], probes: Sequence[str],
-                units: Mapping[str, str]) -> list[str]:
+                units: Mapping[str, str], runs: Mapping[str, np.ndarray] | None = None
+                ) -> list[str]:
     """What to check when a probe of the record is the model's run scaled by a factor far
     from 1 (``SCALE``, or of the other sign) that mends its misfit to ``GAIN`` of it or less,
     but lies too far from a unit's factor for ``slip_of`` to refuse the record (a column in
@@ -137,7 +149,7 @@ def scale_hints(record, residuals: Mapping[str, np.ndarray], probes: Sequence[st
     wrong). Said, not refused: unlike a unit's exact factor, such a scale may be the model's
     own. ``residuals``: record - model on the record's grid."""
     out = []
-    for p, y, m, g, left in _scales(record, residuals, probes):
+    for p, y, m, g, left in _scales(record, residuals, probes, runs):
         # a flat record (g = 0) reads nothing of the model: no scale to name
         if left <= 0.0 or g == 0.0 or not (g < 0.0 or
                                            abs(math.log(abs(g))) >= math.log(SCALE)):
@@ -216,9 +228,12 @@ def stop_of(model) -> float | None:
     return stop if stop > 0 else None
 
 
-def hints(model, record, residuals: Mapping[str, np.ndarray], error: float) -> list[str]:
+def hints(model, record, residuals: Mapping[str, np.ndarray], error: float,
+          runs: Mapping[str, np.ndarray] | None = None) -> list[str]:
     """What the user may check before reading a fit or a diagnosis of ``record``: its clock
     and time unit when the ``model``'s misfit ``error`` is gross (``clock_hints``), and a
-    probe the model meets only scaled (``scale_hints``); ``residuals``: record - model."""
+    probe the model meets only scaled (``scale_hints``); ``residuals``: record - model,
+    ``runs``: the model's run on the record's grid (where known)."""
     return [*clock_hints(np.asarray(record.t, float), error, stop_of(model)),
-            *scale_hints(record, residuals, list(residuals), model.meta.get("units", {}))]
+            *scale_hints(record, residuals, list(residuals), model.meta.get("units", {}),
+                         runs)]

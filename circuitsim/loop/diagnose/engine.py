@@ -1582,4 +1582,4 @@ def _hints(setup: Setup, state: ModelState) -> list[str]:
 
     final = state.fit
     return hints(state.model, setup.record, {p: final.residuals[p] for p in setup.probes},
-                 final.error)
+                 final.error, {p: final.sim[p] for p in setup.probes})
