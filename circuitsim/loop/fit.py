@@ -959,13 +959,18 @@ def fit_record(model, record: Record, free: Sequence[str], *,
                                            tol)
     prob.stage = "uncertainty"
     result = prob.result(z, step, ok, msg, nfev, stages)
-    if refuse_slip:  # a unit's slip refused; a clock or a scale, the user's or not, said
-        runs = {p: result.sim[p] for p in result.residuals}
-        slip.refuse(model, record, result.residuals, runs)
-        notes = (*result.warnings, *slip.hints(model, record, result.residuals, result.error,
-                                               runs))
-        result = dataclasses.replace(result, warnings=notes)
+    if refuse_slip:
+        result = _slips_said(model, record, result)
     return dataclasses.replace(result, reduction=reduction)
+
+
+def _slips_said(model, record: Record, result: FitResult) -> FitResult:
+    """A unit's slip refused (DataError); a clock or a scale, the user's or the model's,
+    said in the result's warnings (``loop.slip``), judged against the fitted run itself."""
+    runs = {p: result.sim[p] for p in result.residuals}
+    slip.refuse(model, record, result.residuals, runs)
+    notes = slip.hints(model, record, result.residuals, result.error, runs)
+    return dataclasses.replace(result, warnings=(*result.warnings, *notes))
 
 
 def _started(prob: _RecordProblem, z: np.ndarray, bounds) -> np.ndarray:

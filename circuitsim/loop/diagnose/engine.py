@@ -922,10 +922,11 @@ def _neighbour_laws(setup: Setup, state: ModelState, log: dict[str, Any]) -> Mod
     it (the best such), and the backward step then re-tests the others; one within the
     margin is reported as indistinct. Each body's torque is revised once."""
     done: set[tuple[str, str]] = set()
+    swapped: set[str] = set()
     while True:
         i = next((j for j in range(len(state.chosen)) if _law_open(state, j, done)), None)
         if i is None:
-            return state
+            return _rejudged(setup, state, swapped, log)
         old = state.chosen[i].candidate
         done.add((old.effect, old.target))
         others = _law_neighbours(state, i, log)
@@ -948,7 +949,24 @@ def _neighbour_laws(setup: Setup, state: ModelState, log: dict[str, Any]) -> Mod
                          if k != kept and g - base < BIC_MARGIN], log, "laws")
         if taken is not None:
             done.add((taken.chosen[i].candidate.effect, old.target))
+            swapped.add(best)
             state = _backward(setup, taken, log)
+
+
+def _rejudged(setup: Setup, state: ModelState, keys: set[str], log: dict[str, Any]
+              ) -> ModelState:
+    """The evidence of each choice in ``keys`` judged anew against the final model without
+    it: a law swapped in was judged in the company of the law it replaced elsewhere (a
+    breakaway peak on the hub still in place when the rotor's was replaced), which the
+    backward step may have dropped since. ``state`` itself is returned unchanged."""
+    idx = [i for i, c in enumerate(state.chosen) if c.candidate.key in keys]
+    reduced = _withouts(setup, state, [[c for j, c in enumerate(state.chosen) if j != i]
+                                       for i in idx])
+    for i, less in zip(idx, reduced, strict=True):
+        if less is not None:
+            c = state.chosen[i].candidate
+            log["trials"][c.key] = judge(setup, less, Trial((c,), state.fit))
+    return state
 
 
 def _law_open(state: ModelState, i: int, done: set[tuple[str, str]]) -> bool:
