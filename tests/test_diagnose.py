@@ -1380,6 +1380,34 @@ def test_an_accepted_torque_moves_to_the_law_at_its_place_that_fits_better():
     assert any(t.startswith(tie) for t in log["indistinct"])
 
 
+def test_a_laws_starts_are_chosen_by_what_the_search_knew_of_them():
+    """engine._law_neighbours: of a breakaway peak's starts (one per Stribeck speed), the
+    one a round refitted is taken, else the one screened, else the first; a start refitted
+    and one in a round's alternatives compared as a Trial against a bool and the diagnosis
+    died (TypeError) on fresh13's v05."""
+    from types import SimpleNamespace
+
+    from circuitsim.loop.diagnose.context import Choice
+    from circuitsim.loop.diagnose.engine import _law_neighbours
+
+    raw = cs.load(MOTOR).raw
+    dry, viscous = (_candidate(build(raw), e, "rotor") for e in ("coulomb-friction",
+                                                                  "viscous-friction"))
+    state = SimpleNamespace(chosen=[Choice(dry), Choice(viscous)], base_raw=raw)
+    starts = [c for c in effects.candidates(build(dry.apply(raw)))
+              if c.effect == "stribeck-friction" and c.target == "rotor"]
+    assert len(starts) >= 3
+    for known in ({"trials": {starts[1].key: object()},
+                   "rounds": {"x": [SimpleNamespace(candidates=[starts[2]])]}},
+                  {"trials": {}, "rounds": {"x": [SimpleNamespace(candidates=[starts[2]])]}},
+                  {"trials": {}, "starts": {starts[1].key: {}}}, {"trials": {}}):
+        got = {c.effect: c.key for c in _law_neighbours(state, 1, known)}
+        assert set(got) == {"stribeck-friction", "force-offset"}  # the dry one is held
+        want = (starts[1] if starts[1].key in known["trials"] or "starts" in known else
+                starts[2] if known.get("rounds") else starts[0])
+        assert got["stribeck-friction"] == want.key
+
+
 def _delay_case(stage: str, seed: int, phi: float = 0.0, over_error: float = 0.0):
     """law_test on a reading of a rich signal (30-400 Hz) at 20 kHz through ``stage`` (in
     closed form, each sine through the stage's H(jw)), fitted as the catalog's delay reads

@@ -993,7 +993,7 @@ def _law_neighbours(state: ModelState, i: int, log: dict[str, Any]) -> list[Any]
                 (c.effect, c.target) not in held):
             starts.setdefault(c.kind, []).append(c)
     # of a shape's starts (a breakaway's speeds), the one the search refitted or screened
-    return [max(alts, key=lambda c: (c.key in log["trials"] or _in_rounds(c, log),
+    return [max(alts, key=lambda c: (c.key in log["trials"] or _in_rounds(c, log) is not None,
                                      c.key in log.get("starts", {})))
             for alts in starts.values()]
 
