@@ -85,3 +85,19 @@ def test_the_apis_dominant_ripple_warns_when_it_is_an_alias(compile_text):
     assert h.frequency == pytest.approx(1000 - F3, rel=1e-3)  # the samples' line, said so
     with pytest.raises(ValueError, match="Nyquist"):  # asked for by its order: refused
         res.harmonic("w", order=3)
+
+
+def test_run_step_sets_the_output_grid_and_resolves_the_alias(write_netlist, capsys):
+    """``run --step``, as the alias's words advise: the 1 ms netlist read every 0.1 ms shows
+    the ripple itself; a step of 0, or beyond the stop time, is refused with exit 2."""
+    path = write_netlist(SHAFT.format(law=LAW, step="1 ms"))
+    assert main(["run", str(path), "--no-files", "--json", "--step", "0.1ms"]) == 0
+    r = json.loads(capsys.readouterr().out)["probes"]["w"]["ripple"]
+    assert r["state"] == "periodic" and r["frequency"] == pytest.approx(F3, rel=1e-4)
+    for bad in ("0", "2s"):  # argparse's refusal exits, the run's returns: both code 2
+        try:
+            code = main(["run", str(path), "--no-files", "--step", bad])
+        except SystemExit as exc:
+            code = exc.code
+        assert code == 2
+    assert "at most the stop time" in capsys.readouterr().err

@@ -179,7 +179,11 @@ def _simulate(model, args, overrides: dict[str, float]):
     from circuitsim.netlist.load import MAX_OUTPUT_POINTS, output_points, too_many_points
 
     stop = args.stop if args.stop is not None else model.netlist.analysis.stop
-    points = output_points(stop, model.netlist.analysis.step)
+    step = args.step if args.step is not None else model.netlist.analysis.step
+    if step is not None and not 0 < step <= stop:
+        raise ParameterError(f"{args.netlist}: --step {step:g} s must be positive and at most "
+                             f"the stop time {stop:g} s")
+    points = output_points(stop, step)
     if points > MAX_OUTPUT_POINTS:
         raise ParameterError(f"{args.netlist}: {too_many_points(points)}")
     # points before --after are not written: do not keep them in memory either, except the
@@ -192,7 +196,8 @@ def _simulate(model, args, overrides: dict[str, float]):
     if args.after > 0:
         opts = {"keep_after": min(args.after, stop * (1 - args.window)), "decimate": 1 << 62}
     with time_bar(stop, quiet=args.quiet or args.json) as bar:
-        return model.simulate(stop=args.stop, params=overrides, progress=bar, **opts)
+        return model.simulate(stop=args.stop, step=args.step, params=overrides, progress=bar,
+                              **opts)
 
 
 def cmd_run(args) -> int:
@@ -562,6 +567,9 @@ def _add_run(sub) -> None:
     r.add_argument("--set", action="append", metavar="NAME=VALUE",
                    help="override a parameter (units or SPICE suffixes: --set La=0.9mH, R=2k)")
     r.add_argument("--stop", type=quantity("s"), help="stop time (e.g. 0.1, 10ms)")
+    r.add_argument("--step", type=quantity("s"),
+                   help="output step (e.g. 10us; default: the netlist's analysis step): the "
+                        "grid the CSV, the plot and the summary read")
     r.add_argument("--out", help="CSV file (default: NETLIST_STEM.csv; folders are created)")
     r.add_argument("--plot", help="PNG file (default: NETLIST_STEM.png)")
     r.add_argument("--no-files", action="store_true", help="write no CSV or PNG")

@@ -41,7 +41,7 @@ class Alias:
         return (f"an alias: the order-{self.order} ripple of {self.shaft} at {self.true:.6g} Hz "
                 f"lies above the output grid's Nyquist frequency ({self.nyquist:.6g} Hz), and "
                 f"its samples show it at {self.seen:.6g} Hz; an output step below "
-                f"{step:.3g} s (the netlist's analysis: step) resolves it")
+                f"{step:.3g} s (run --step, or the netlist's analysis: step) resolves it")
 
 
 def angle_orders(model, y: np.ndarray, yp: np.ndarray, p: tuple, t: float = 0.0
