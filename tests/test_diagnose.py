@@ -1408,6 +1408,31 @@ def test_a_laws_starts_are_chosen_by_what_the_search_knew_of_them():
         assert got["stribeck-friction"] == want.key
 
 
+def test_a_law_with_spare_parameters_that_fits_no_better_is_no_tie():
+    """engine._law_ties: a breakaway peak refitted in a dry friction's place ends with its
+    Stribeck speed far above the record's speeds -- the dry friction itself, one parameter
+    more, ΔBIC +ln(n probes) (+9.0 on fresh27's ab10, under the margin of 10) -- and was
+    said to be indistinct from it. A law with more parameters is a tie only when they buy
+    the likelihood something; one with as many or fewer, whenever it is within the margin."""
+    from types import SimpleNamespace
+
+    from circuitsim.loop.diagnose.engine import _law_ties
+
+    n, probes = 2500, ("current", "speed", "load_speed")
+    penalty = math.log(n * len(probes))
+    setup = SimpleNamespace(n=n, probes=probes)
+    kept = SimpleNamespace(free=["R", "c"])
+    law = {k: SimpleNamespace(free=["R", *["x"] * k]) for k in (1, 2)}
+    gains = {"stribeck:spare": (penalty + 0.1, law[2]), "stribeck:buys": (penalty - 3.0, law[2]),
+             "offset": (0.5, law[1]), "viscous": (12.0, law[1])}
+    ties = dict(_law_ties(setup, kept, gains, 0.0))
+    assert ties == {"stribeck:buys": penalty - 3.0, "offset": 0.5}
+    # measured from a law the step took (its own ΔBIC -50 from the model before)
+    ties = dict(_law_ties(setup, kept, {k: (g - 50.0, t) for k, (g, t) in gains.items()},
+                          -50.0))
+    assert set(ties) == {"stribeck:buys", "offset"}
+
+
 def _delay_case(stage: str, seed: int, phi: float = 0.0, over_error: float = 0.0):
     """law_test on a reading of a rich signal (30-400 Hz) at 20 kHz through ``stage`` (in
     closed form, each sine through the stage's H(jw)), fitted as the catalog's delay reads

@@ -942,15 +942,33 @@ def _neighbour_laws(setup: Setup, state: ModelState, log: dict[str, Any]) -> Mod
         best = min(gains, key=lambda k: gains[k][0], default=None)
         taken = None if best is None or gains[best][0] >= -BIC_MARGIN else _take_order(
             setup, state, i, gains[best][1], log, "another law at its place,")
-        # the laws within the margin of the one the model holds in the end are told
-        # apart by nothing in this record
-        kept, base = (old.key, 0.0) if taken is None else (best, gains[best][0])
-        _say_ties(kept, [(k, g - base) for k, (g, _) in gains.items()
-                         if k != kept and g - base < BIC_MARGIN], log, "laws")
+        kept = state if taken is None else gains[best][1]
+        _say_ties(old.key if taken is None else best,
+                  _law_ties(setup, kept, {k: v for k, v in gains.items() if v[1] is not kept},
+                            0.0 if taken is None else gains[best][0]),
+                  log, "laws")
         if taken is not None:
             done.add((taken.chosen[i].candidate.effect, old.target))
             swapped.add(best)
             state = _backward(setup, taken, log)
+
+
+def _law_ties(setup: Setup, kept: ModelState, gains: Mapping[str, tuple[float, ModelState]],
+              base: float) -> list[tuple[str, float]]:
+    """The laws within the BIC margin of the one ``kept`` (``gains``: each law's ΔBIC from
+    the model before the step, from which ``base`` is the kept law's), less one with more
+    parameters that fits no better than the kept law: a breakaway peak whose Stribeck speed
+    ends far above the record's speeds is the dry friction itself, and its extra parameter
+    alone costs ln(n probes), under the margin below 22 026 samples."""
+    penalty = math.log(setup.n * len(setup.probes))
+    out = []
+    for key, (gain, trial) in gains.items():
+        extra = len(trial.free) - len(kept.free)
+        # the likelihood's own share of the difference: under -2, the extra parameters buy
+        # something (AIC's unit), and the two laws are told apart by the margin alone
+        if gain - base < BIC_MARGIN and (extra <= 0 or gain - base - extra * penalty < -2.0):
+            out.append((key, gain - base))
+    return out
 
 
 def _rejudged(setup: Setup, state: ModelState, keys: set[str], log: dict[str, Any]
