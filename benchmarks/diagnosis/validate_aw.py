@@ -1,0 +1,103 @@
+"""Cross-check of motor AW on the records' own times: the noise-free output of simulators_aw.py
+against circuitsim's simulation of the declared netlists (motor_aw_fast.yaml,
+motor_aw_slow.yaml) with NO effect: first at the netlists' DECLARED values (on the nominal grid
+of each regime, and on the times of az07 (even) and az05 (jittered) in the fast regime and of
+az01 (even) and az08 (a logger's uneven times) in the slow one), then on every record's times
+at the record's TRUE values (the declared parameters it frees set to their true values through
+circuitsim's parameter overrides, ``params``). The records' effects are not run through
+circuitsim here (this blind set keeps circuitsim to the null models).
+
+Both netlists must declare the same motor: their parameters and all components but the
+source are compared first.
+
+    python benchmarks/diagnosis/validate_aw.py              # every record
+    python benchmarks/diagnosis/validate_aw.py az04,az14    # some
+
+Prints, per probe, the largest difference relative to the signal's range at the record's
+sample times. Target 1e-7 of the range; exit status 1 above it. Nothing here runs a
+diagnosis.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+import tempfile
+import warnings
+from pathlib import Path
+from types import SimpleNamespace
+from typing import Any
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))
+
+import crosscheck
+import simulators_aw as sw
+from make_records_aw import record_specs, scale_marginal, times
+
+NETLISTS = {"fast": HERE / "netlists" / "motor_aw_fast.yaml",
+            "slow": HERE / "netlists" / "motor_aw_slow.yaml"}
+SOURCES = {"fast": "Vin", "slow": "U"}
+TARGET = 1e-7
+NULL_ON = ("az01", "az05", "az07", "az08")
+
+
+def compare(cs: Any, s: dict, label: str, fx: dict,
+            values: dict[str, float] | None = None) -> float:
+    """Motor AW's scipy model against circuitsim at the record's own times (``values``:
+    circuitsim's parameter overrides)."""
+    sim = SimpleNamespace(grid=lambda regime: times(s), simulate=sw.simulate,
+                          PROBES=sw.PROBES)
+    return crosscheck.compare(cs, sim, "AW", sw.MOTOR_AW, NETLISTS, s["regime"], label, fx,
+                              None, values)
+
+
+def check(cs: Any, s: dict) -> float:
+    """One record's comparisons: the declared null on its times (NULL_ON) and the true null
+    (the overrides), both without any effect."""
+    worst = 0.0
+    kind = s["timestamps"].split(":")[0]
+    if s["id"] in NULL_ON:
+        worst = compare(cs, s, f"declared null on {s['id']}'s {kind} times", {})
+    return max(worst, compare(cs, s, f"true null of {s['id']} ({kind} times)",
+                              {"p": dict(s["ptrue"])}, dict(s["ptrue"])))
+
+
+def same_motor(cs: Any) -> bool:
+    """Whether the two netlists declare the same parameters and components (but for the
+    source)."""
+    nets = {r: cs.load(path).raw for r, path in NETLISTS.items()}
+
+    def motor(r: str) -> tuple:
+        raw = nets[r]
+        comps = [dict(c[0]) for c in raw.comps if str(c[0]["name"]) != SOURCES[r]]
+        return repr({k: v for k, (v, _) in raw.params.items()}), repr(comps)
+
+    same = motor("fast") == motor("slow")
+    print(f"motor AW: the fast and slow netlists declare the same motor: {same}")
+    return same
+
+
+def main() -> int:
+    """Every record of fresh48; exit status 1 above TARGET (or if the netlists differ)."""
+    os.environ.setdefault("CIRCUITSIM_CACHE", tempfile.mkdtemp(prefix="diagbench-cache-"))
+    warnings.simplefilter("ignore")
+    import circuitsim as cs
+
+    same = same_motor(cs)
+    grid = SimpleNamespace(grid=sw.grid, simulate=sw.simulate, PROBES=sw.PROBES)
+    worst = max(crosscheck.compare(cs, grid, "AW", sw.MOTOR_AW, NETLISTS, r,
+                                   "declared null, nominal grid", {})
+                for r in ("fast", "slow"))
+    status = crosscheck.check_records(cs, record_specs(), times, scale_marginal, check,
+                                      TARGET, sys.argv[1:2])
+    if worst >= TARGET:
+        status = 1
+    if any(m.startswith("circuitsim.loop") for m in sys.modules):
+        print("the diagnosis's package was imported: the check is void")
+        return 1
+    return status if same else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
