@@ -919,38 +919,55 @@ def _neighbour_laws(setup: Setup, state: ModelState, log: dict[str, Any]) -> Mod
     """Each accepted torque of ``LAW_KINDS`` refitted under the other laws at its place,
     with every other effect in place. A law that lowers the BIC by the margin through both
     noise filters (a swap's test), whose parameters are constants of the record, replaces
-    it (the best such), and the backward step then re-tests the others; one within the
-    margin is reported as indistinct. Each body's torque is revised once."""
+    it (the best such), and the backward step then re-tests the others; the law swapped in
+    is itself revised once more in the model the backward step leaves (fresh46's ax08: the
+    rotor's laws compared while a dry friction on the hub, dropped after, still carried the
+    torque, and all of them tied). A law within the margin of the one kept is reported as
+    indistinct."""
     done: set[tuple[str, str]] = set()
     swapped: set[str] = set()
+    moved: set[str] = set()  # bodies whose torque changed law once
     while True:
         i = next((j for j in range(len(state.chosen)) if _law_open(state, j, done)), None)
         if i is None:
             return _rejudged(setup, state, swapped, log)
         old = state.chosen[i].candidate
         done.add((old.effect, old.target))
-        others = _law_neighbours(state, i, log)
-        trials = _refitted(setup, state, [
-            _replaced(setup, state, i, o, _known_start(o, log)) for o in others], "law")
-        own = whiteners_of(state.fit.residuals, setup.probes)
-        gains: dict[str, tuple[float, ModelState]] = {}
-        for other, trial in zip(others, trials, strict=True):
-            if trial is not None:
-                gain = _swap_gain(setup, state, trial, len(trial.free) - len(state.free), own)
-                setup.log(f"  law {other.key} in place of {old.key}: ΔBIC {gain:.1f}")
-                gains[other.key] = (gain, trial)
+        gains = _law_gains(setup, state, i, log)
         best = min(gains, key=lambda k: gains[k][0], default=None)
         taken = None if best is None or gains[best][0] >= -BIC_MARGIN else _take_order(
             setup, state, i, gains[best][1], log, "another law at its place,")
-        kept = state if taken is None else gains[best][1]
-        _say_ties(old.key if taken is None else best,
-                  _law_ties(setup, kept, {k: v for k, v in gains.items() if v[1] is not kept},
-                            0.0 if taken is None else gains[best][0]),
-                  log, "laws")
+        again = taken is not None and old.target not in moved
+        if not again:  # the ties of the law the model keeps at this place
+            kept = state if taken is None else gains[best][1]
+            _say_ties(old.key if taken is None else best,
+                      _law_ties(setup, kept, {k: v for k, v in gains.items()
+                                              if v[1] is not kept},
+                                0.0 if taken is None else gains[best][0]), log, "laws")
         if taken is not None:
-            done.add((taken.chosen[i].candidate.effect, old.target))
+            moved.add(old.target)
+            if not again:
+                done.add((taken.chosen[i].candidate.effect, old.target))
             swapped.add(best)
             state = _backward(setup, taken, log)
+
+
+def _law_gains(setup: Setup, state: ModelState, i: int, log: dict[str, Any]
+               ) -> dict[str, tuple[float, ModelState]]:
+    """Each other law at the ``i``-th choice's place (``_law_neighbours``) refitted in its
+    stead: its key -> (ΔBIC from ``state`` through both noise filters, the refitted model)."""
+    old = state.chosen[i].candidate
+    others = _law_neighbours(state, i, log)
+    trials = _refitted(setup, state, [
+        _replaced(setup, state, i, o, _known_start(o, log)) for o in others], "law")
+    own = whiteners_of(state.fit.residuals, setup.probes)
+    gains: dict[str, tuple[float, ModelState]] = {}
+    for other, trial in zip(others, trials, strict=True):
+        if trial is not None:
+            gain = _swap_gain(setup, state, trial, len(trial.free) - len(state.free), own)
+            setup.log(f"  law {other.key} in place of {old.key}: ΔBIC {gain:.1f}")
+            gains[other.key] = (gain, trial)
+    return gains
 
 
 def _law_ties(setup: Setup, kept: ModelState, gains: Mapping[str, tuple[float, ModelState]],
