@@ -321,3 +321,35 @@ def test_pss_over_a_whole_turn_of_the_filtered_motor_is_the_orbit_of_order_8():
     assert whole["speed"].mean() == pytest.approx(eighth["speed"].mean(), rel=1e-9)
     assert whole.harmonic("i_total", 8)[1] == pytest.approx(
         eighth.harmonic("i_total", 1)[1], rel=1e-6)
+
+
+def test_pss_of_a_machine_turning_backwards():
+    """Kim & Kim's case 6 at Vin = -5 V turns backwards: the period was taken as 2 pi /
+    (order w) < 0, and the shooting integrated the stable orbit backwards in time until IDA
+    ran out of steps. The period is a time whatever the sense; the angle travels backwards.
+    Its orbit: one turn in one period, and the transient's mean speed."""
+    import warnings
+
+    import circuitsim as cs
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        model = cs.compile(cs.load(NETLISTS / "kim2024" / "case6.yaml"))
+    ps = periodic_steady_state(model, {"Vin": -5.0})
+    w = ps["speed"].mean()
+    assert ps.period > 0 and w < 0
+    assert ps.period * abs(w) == pytest.approx(2 * np.pi, rel=1e-5)
+    run = model.simulate(params={"Vin": -5.0}, stop=0.6, rtol=1e-9, atol=1e-11)
+    assert run.harmonic("speed", order=8, window=0.1).offset == pytest.approx(w, rel=1e-5)
+
+
+def test_the_ripple_of_a_shaft_turning_backwards_has_a_positive_frequency(base):
+    """``ac --order`` and ``SimResult.harmonic(order=)`` on the base motor at -12 V: the
+    order-8 ripple's frequency is 8 |w| / 2 pi (it was -825.7 Hz, and the transient's
+    harmonic was refused as a negative frequency); its amplitude is the transient's."""
+    resp = harmonic_response(base, 8, "i_total", {"Vin": -12.0})
+    run = base.simulate(params={"Vin": -12.0}, rtol=1e-9, atol=1e-11)
+    h = run.harmonic("i_total", order=8, window=1 / 6)
+    assert resp.frequency == pytest.approx(h.frequency, rel=1e-4)
+    assert resp.frequency == pytest.approx(8 * 648.52 / (2 * np.pi), rel=1e-4)
+    assert resp.amplitude == pytest.approx(h.amplitude, rel=1e-4)

@@ -234,5 +234,7 @@ def harmonic_response(model, order: int, output: str,
     x = np.linalg.solve(lin.Fy + 1j * omega * lin.Fyp, -ck)
     z = cy @ x + 1j * omega * (cyp @ x) + out_k
     # Re(z e^{i k phi}) = |z| sin(k phi + arg z + pi/2)
-    return HarmonicResponse(order, omega / (2 * np.pi), float(abs(z)),
+    # a frequency whichever way the shaft turns (phi falls on a shaft turning backwards;
+    # the phase stays one of the angle)
+    return HarmonicResponse(order, abs(omega) / (2 * np.pi), float(abs(z)),
                             float(np.angle(z) + np.pi / 2))

@@ -50,6 +50,7 @@ class _Shooting:
         self.free, self.angles, self.order = free, angles, order
         self.base, self.period = base, period
         self.autonomous = period is None
+        self.sense = 1.0  # +1 when the first shaft turns forwards, -1 backwards
 
     def flow(self, y0: np.ndarray, t_end: float, grid: np.ndarray | None = None):
         from circuitsim.solve.init import consistent_initial
@@ -76,7 +77,8 @@ class _Shooting:
         r = ys[-1][self.free] - y0[self.free]
         if self.autonomous:
             a = self.angles[0]
-            r = np.append(r, ys[-1][a] - y0[a] - 2 * np.pi / self.order)
+            # the angle a turning shaft travels: backwards when it turns backwards
+            r = np.append(r, ys[-1][a] - y0[a] - self.sense * 2 * np.pi / self.order)
         return r
 
     def scale(self, z: np.ndarray) -> np.ndarray:
@@ -160,9 +162,14 @@ def _setup(model, params, order: float, period: float | None, rtol: float, atol:
                 f"machine's periodic state needs a drive that turns it at t = 0 (a step "
                 f"source that starts at 0 does not), or give --period for a driven circuit")
         _check_symmetric(model, p, op.y, op.yp, angles, order)
-        T = 2 * np.pi / order / speed
+        # the period is a time, whichever way the shaft turns: integrating a turning-backwards
+        # machine over a negative period ran its stable orbit backwards in time, which IDA
+        # cannot follow (the Kim & Kim case 6 at Vin = -5 V ran out of steps)
+        T = 2 * np.pi / order / abs(speed)
         free = [k for k in range(nd) if k not in angles]
-        return _Shooting(model, p, opts, free, angles, order, y, None), np.append(y[free], T)
+        shoot = _Shooting(model, p, opts, free, angles, order, y, None)
+        shoot.sense = float(np.sign(speed))
+        return shoot, np.append(y[free], T)
     check_period(model, model.param_values(params), float(period))
     y, _ = initial_state(model, 0.0, p)
     free = list(range(nd))

@@ -135,8 +135,8 @@ class SimResult:
         ``solve/alias.py``).
         """
         m = self.window(window)
-        if order is not None:
-            frequency = order * self.shaft_frequency(window, shaft)
+        if order is not None:  # a frequency whichever way the shaft turns
+            frequency = order * abs(self.shaft_frequency(window, shaft))
         if frequency is None:
             h = signal.dominant_ripple(self.t[m], self[name][m])
             from circuitsim.solve.alias import Aliasing
