@@ -45,12 +45,12 @@ class _Shooting:
     between where the orbit ends and where it started."""
 
     def __init__(self, model, p: tuple, opts: dict, free: list[int], angles: list[int],
-                 order: float, base: np.ndarray, period: float | None):
+                 order: float, base: np.ndarray, period: float | None, sense: float = 1.0):
         self.model, self.p, self.opts = model, p, opts
         self.free, self.angles, self.order = free, angles, order
         self.base, self.period = base, period
         self.autonomous = period is None
-        self.sense = 1.0  # +1 when the first shaft turns forwards, -1 backwards
+        self.sense = sense  # +1 when the first shaft turns forwards, -1 backwards
 
     def flow(self, y0: np.ndarray, t_end: float, grid: np.ndarray | None = None):
         from circuitsim.solve.init import consistent_initial
@@ -167,9 +167,8 @@ def _setup(model, params, order: float, period: float | None, rtol: float, atol:
         # cannot follow (the Kim & Kim case 6 at Vin = -5 V ran out of steps)
         T = 2 * np.pi / order / abs(speed)
         free = [k for k in range(nd) if k not in angles]
-        shoot = _Shooting(model, p, opts, free, angles, order, y, None)
-        shoot.sense = float(np.sign(speed))
-        return shoot, np.append(y[free], T)
+        return (_Shooting(model, p, opts, free, angles, order, y, None, float(np.sign(speed))),
+                np.append(y[free], T))
     check_period(model, model.param_values(params), float(period))
     y, _ = initial_state(model, 0.0, p)
     free = list(range(nd))
