@@ -1591,7 +1591,8 @@ def test_close_calls_are_refitted_and_a_rigid_gears_twin_once():
     w = 100.0 * np.sin(7.0 * t) + 30.0 * t
     compliant = w / 16.0 + 0.05 * np.sin(230.0 * t)  # a torsional mode on the load side
     state = SimpleNamespace(fit=SimpleNamespace(sim={"rotor.w": w, "pump.w": w / 16.0,
-                                                     "wheel.w": compliant}))
+                                                     "wheel.w": compliant}),
+                            model=SimpleNamespace(netlist=SimpleNamespace(components=[])))
 
     def screen(effect: str, target: str, share: float):
         cand = SimpleNamespace(effect=effect, target=target, key=f"{effect}:{target}",
@@ -1630,6 +1631,46 @@ def test_close_calls_are_refitted_and_a_rigid_gears_twin_once():
            screen("resistance-drift", "Ra", 0.5809)]
     y09[3].proposal.candidate.shape = "warm-up"
     assert len(_to_refit(state, y09, 3, {})) == 3
+
+
+def test_an_inertia_on_a_rigid_gears_two_sides_is_refitted_once():
+    """An inertia's correction on the rotor and on the hub behind a rigid gear is one
+    circuit (J_hub/N^2 at the rotor): a round refits it once and gives the place to the next
+    screen -- fresh48's az08, where the rotor's and the hub's inertias (ΔBIC -4032.6 each)
+    filled two of the three places and the roast's beyond the compliant spit, the truth, was
+    never refitted. An inertia beyond a compliance is no twin."""
+    from types import SimpleNamespace
+
+    from circuitsim.loop.diagnose.engine import _to_refit
+
+    t = np.linspace(0.0, 1.0, 501)
+    w = 100.0 * np.sin(7.0 * t) + 30.0 * t
+    roast = w / 120.0 + 0.05 * np.sin(20.0 * t)  # the roast swinging on the spit
+
+    def body(name: str, node: str):
+        return SimpleNamespace(name=name, ports=[("shaft", node)])
+
+    state = SimpleNamespace(
+        fit=SimpleNamespace(sim={"rotor.w": w, "hub.w": w / 120.0, "roast.w": roast}),
+        model=SimpleNamespace(netlist=SimpleNamespace(components=[
+            body("Jr", "rotor"), body("Jh", "hub"), body("Jl", "roast"),
+            SimpleNamespace(name="G", ports=[("a", "rotor"), ("b", "hub")])])))
+
+    def screen(effect: str, target: str, share: float):
+        cand = SimpleNamespace(effect=effect, target=target, key=f"{effect}:{target}",
+                               fixed={}, shape=None)
+        return SimpleNamespace(proposal=SimpleNamespace(candidate=cand), share=share)
+
+    az08 = [screen("inertia", "Jr", 0.62), screen("inertia", "Jh", 0.62),
+            screen("sensor-gain", "current", 0.55), screen("inertia", "Jl", 0.41),
+            screen("series-resistance", "Ra", 0.12)]
+    log: dict = {}
+    keys = [s.proposal.candidate.key for s in _to_refit(state, az08, 3, log)]
+    assert keys == ["inertia:Jr", "sensor-gain:current", "inertia:Jl"]
+    assert log["shaft_twins"] == {"inertia:Jr": ["inertia:Jh"]}
+    # a component that is no single body (the gear) has no speed of its own: no twin
+    gear = [screen("inertia", "G", 0.6), screen("inertia", "Jl", 0.5)]
+    assert len(_to_refit(state, gear, 3, {})) == 2
 
 
 def test_a_residual_that_follows_the_models_own_signals_is_no_sensor_noise():
