@@ -98,6 +98,9 @@ def _error(call) -> str:
      ["separates its columns by semicolons", "decimal points"]),
     ("time\tspeed\ti_total\n" + _rows().replace(",", "\t"), "rec.csv:1",
      ["separates its columns by tabs", "comma-separated"]),
+    ("# bench 3, 2026-11-30\ntime,speed,i_total\n" + _rows(), "rec.csv:1",
+     ["starts with a comment line", "Delete the lines above the header"]),
+    ("\x00\x01\x02\n" + _rows(), "rec.csv:1", ["not a text CSV", "control characters"]),
 ])
 def test_record_errors_name_file_row_column_and_fix(tmp_path, text, where, words):
     p = _csv(tmp_path, text)

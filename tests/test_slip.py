@@ -223,6 +223,24 @@ def test_a_fit_warns_of_a_probe_it_meets_only_scaled_and_of_a_late_clock(motor):
     assert not fit_record(model, rec, [], reduce=False).warnings
 
 
+def test_a_gross_misfit_no_slip_explains_is_said_with_its_probes(motor):
+    """A record stretched tenfold in time (no clock or unit hint fits it: it starts at 0 and
+    spans the netlist's own analysis) fitted R ninefold with a 2 % standard error and no
+    word. The fit now says the model does not describe the record, naming each probe it
+    misses by at least GROSS_MISFIT of its spread; a record the model meets says nothing."""
+    from circuitsim.loop.slip import GROSS_MISFIT, gross_hints
+
+    _, model, run = motor
+    rec = _record(run)
+    slow = Record(10.0 * rec.t, {p: rec[p] for p in rec.names}, "slow.csv")
+    fit = fit_record(model, slow, ["R"], reduce=False)
+    (said,) = [w for w in fit.warnings if w.startswith("the model misses the record by")]
+    assert fit.error >= GROSS_MISFIT and "standard errors assume it does" in said
+    missed = [p for p in ("speed", "i") if f"{p} by " in said]
+    assert missed and all(fit.errors[p] >= GROSS_MISFIT for p in missed)
+    assert gross_hints(slow, fit.residuals, 0.99 * GROSS_MISFIT) == []
+
+
 @pytest.mark.parametrize("scale", [1e30, 1e-30, -1e20])
 def test_a_column_scaled_far_beyond_any_unit_is_said(motor, scale):
     """A column 1e30 times the model's run: record - residual gave the model back as 0 (the

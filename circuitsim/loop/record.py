@@ -130,6 +130,7 @@ def load_record(path: str | Path, probes: Sequence[str] | None = None, *,
     if all(_is_number(h) for h in header):
         raise DataError(f"data file '{p}' has no header row (the first row is numbers). Add "
                         f"a first row naming the columns: '{time},PROBE,...'", SourceLoc(p, 1))
+    _check_first_line(p, header)
     _check_separator(p, header)
     _check_header(p, header, probes, inputs, time)
     factors = [_unit_factor(p, name, unit, units or {}, time) for name, unit in cells]
@@ -162,6 +163,20 @@ def _unit_factor(p: str, name: str, unit: str | None, units: Mapping[str, str],
     except ValueError as exc:
         raise DataError(f"{cell}: {exc}. Write the unit as in the netlist (e.g. A, V, rad/s, "
                         f"rpm), or leave the brackets out for SI", SourceLoc(p, 1)) from None
+
+
+def _check_first_line(p: str, header: list[str]) -> None:
+    """A first line that is no header: a logger's comment ('# ...'), said as such rather
+    than as a missing time column; bytes that are no text (a binary file named .csv)."""
+    first = ",".join(header)
+    if any(ord(ch) < 32 and ch not in "\t\r\n" for ch in first):
+        raise DataError(f"data file '{p}' is not a text CSV (its first line holds control "
+                        f"characters). Export the record as comma-separated text",
+                        SourceLoc(p, 1))
+    if first.lstrip().startswith("#"):
+        raise DataError(f"data file '{p}' starts with a comment line ('{first[:60]}'); a "
+                        f"record's first line is its header ('time,PROBE,...'). Delete the "
+                        f"lines above the header", SourceLoc(p, 1))
 
 
 def _check_separator(p: str, header: list[str]) -> None:

@@ -234,6 +234,28 @@ def hints(model, record, residuals: Mapping[str, np.ndarray], error: float,
     and time unit when the ``model``'s misfit ``error`` is gross (``clock_hints``), and a
     probe the model meets only scaled (``scale_hints``); ``residuals``: record - model,
     ``runs``: the model's run on the record's grid (where known)."""
-    return [*clock_hints(np.asarray(record.t, float), error, stop_of(model)),
-            *scale_hints(record, residuals, list(residuals), model.meta.get("units", {}),
-                         runs)]
+    out = [*clock_hints(np.asarray(record.t, float), error, stop_of(model)),
+           *scale_hints(record, residuals, list(residuals), model.meta.get("units", {}),
+                        runs)]
+    return out or gross_hints(record, residuals, error)
+
+
+def gross_hints(record, residuals: Mapping[str, np.ndarray], error: float) -> list[str]:
+    """A gross misfit (``GROSS_MISFIT``) that neither the clock nor a scale explains: the
+    estimates are those of a model that does not describe the record, and their standard
+    errors assume it does (a record stretched tenfold in time fitted R ninefold with a
+    2 % standard error and no word). Names each probe missed grossly, by its NRMSE [-]."""
+    if not error >= GROSS_MISFIT:
+        return []
+    worst = []
+    for p, r in residuals.items():
+        y = np.asarray(record[p], float)
+        spread = float(np.std(y))
+        nrmse = float(np.sqrt(np.mean(np.asarray(r, float) ** 2))) / spread if spread else 0.0
+        if nrmse >= GROSS_MISFIT:
+            worst.append(f"{p} by {nrmse:.0%} of its spread")
+    where = f" ({', '.join(worst)})" if worst else ""
+    return [f"the model misses the record by {error:.0%} of its spread{where}: the estimates "
+            f"are those of a model that does not describe this record, and their standard "
+            f"errors assume it does. Check that the netlist's inputs (sources, loads, their "
+            f"times) are the experiment's, the record's time column and the probes' units"]
