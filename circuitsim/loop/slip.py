@@ -255,7 +255,8 @@ def gross_hints(record, residuals: Mapping[str, np.ndarray], error: float) -> li
         if nrmse >= GROSS_MISFIT:
             worst.append(f"{p} by {nrmse:.0%} of its spread")
     where = f" ({', '.join(worst)})" if worst else ""
-    return [f"the model misses the record by {error:.0%} of its spread{where}: the estimates "
+    said = (f"the model misses the record by {error:.0%} of its spread{where}: the estimates "
             f"are those of a model that does not describe this record, and their standard "
             f"errors assume it does. Check that the netlist's inputs (sources, loads, their "
-            f"times) are the experiment's, the record's time column and the probes' units"]
+            f"times) are the experiment's, the record's time column and the probes' units")
+    return [said]
