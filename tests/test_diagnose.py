@@ -2092,3 +2092,54 @@ def test_a_final_error_above_the_first_is_shown_by_probe_with_its_reason():
     down = diag({"current": 0.1056, "speed": 0.1214}, {"current": 0.05, "speed": 0.06})
     assert down.summary().endswith(f"(error {down.error_before:.4g} -> "
                                    f"{down.error_after:.4g})")
+
+
+def test_a_pair_member_whose_partner_is_gone_must_pass_on_its_own(monkeypatch):
+    """An effect accepted only as one of a pair stays, once its partner has been taken out,
+    only when it passes with the rest of the model: significant by both noise filters and
+    within its range (fresh31's ai12: a hub inertia masked alone, accepted with a cogging
+    that later went as a stand-in, stayed +507 % with no evidence of its own). A choice
+    that came alone, or whose partner stays, is not judged again."""
+    from types import SimpleNamespace
+
+    from circuitsim.loop.diagnose import engine
+    from circuitsim.loop.diagnose.context import Choice
+
+    def choice(key: str) -> Choice:
+        effect, target = key.split(":")[:2]
+        return Choice(SimpleNamespace(key=key, effect=effect, target=target, free={}))
+
+    verdicts = {"inertia:Jh": (-61.5, 4.7), "brush-drop:M": (-900.0, -800.0),
+                "unbalance:hub:1": (-40.0, -35.0)}
+    judged = []
+
+    def without(setup, state, keep):
+        return SimpleNamespace(chosen=keep, fit=state.fit)
+
+    def judge(setup, reduced, trial):
+        (cand,) = trial.candidates
+        judged.append(cand.key)
+        bic, memory = verdicts[cand.key]
+        return SimpleNamespace(delta_bic=bic, memory_bic=memory, at_bound=False, beyond="",
+                               note=f"ΔBIC {bic}, {memory} with the memory out")
+
+    monkeypatch.setattr(engine, "_without", without)
+    monkeypatch.setattr(engine, "judge", judge)
+    setup = SimpleNamespace(log=lambda line: None)
+    drop, inertia, unbalance = choice("brush-drop:M"), choice("inertia:Jh"), \
+        choice("unbalance:hub:1")
+    log = {"rejected": [], "pairs": {"inertia:Jh": "cogging:rotor:3",
+                                     "cogging:rotor:3": "inertia:Jh",
+                                     "unbalance:hub:1": "cogging:rotor:4",
+                                     "cogging:rotor:4": "unbalance:hub:1"}}
+    state = SimpleNamespace(chosen=[drop, inertia, unbalance], fit="final fit")
+    out = engine._orphans(setup, state, log)
+    assert out.chosen == [drop, unbalance]  # the masked orphan goes, the significant stays
+    assert judged == ["inertia:Jh", "unbalance:hub:1"]
+    (why,) = log["rejected"]
+    assert why["target"] == "Jh" and "pair with cogging:rotor:3" in why["reason"]
+    # a partner in place: nothing is judged
+    judged.clear()
+    both = SimpleNamespace(chosen=[inertia, choice("cogging:rotor:3")], fit="final fit")
+    assert engine._orphans(setup, both, {"rejected": [], "pairs": log["pairs"]}) is both
+    assert judged == []

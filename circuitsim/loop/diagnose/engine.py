@@ -143,6 +143,7 @@ def diagnose(netlist, record, free: Sequence[str] = (), *, probes: Sequence[str]
     state = _stand_ins(setup, state0, state, log)
     state = _unstable(setup, state0, state, log)
     state = _one_factor(setup, state0, state, log)
+    state = _orphans(setup, state, log)
     # only the harmonics that stay are named, and a stand-in's orders cost nothing
     state = _neighbour_orders(setup, state, log)
     state = _neighbour_laws(setup, state, log)
@@ -591,6 +592,8 @@ def _refit_round(setup: Setup, state: ModelState, screens: list[Screen],
         pair = _pair(setup, state, screens[:2])
         if pair is not None and pair.passed:
             passed = [(pair, _corrections(screens[:2]))]
+            a, b = (c.key for c in pair.candidates)
+            log.setdefault("pairs", {}).update({a: b, b: a})
     for t, _ in trials:
         if (t, _) not in passed:
             log["tried"].add(t.key)
@@ -1322,7 +1325,8 @@ def _unstable(setup: Setup, state0: ModelState, state: ModelState, log: dict[str
                 log["rejected"].append({"effect": c.candidate.effect,
                                         "target": c.candidate.target,
                                         "reason": "dropped with the effect it refines"})
-        state = reduced
+        # a pair's member left alone must pass alone, before the rest is judged again
+        state = _orphans(setup, reduced, log)
     if not found:
         return state
     return _rejected_as_stand_ins(
@@ -1451,6 +1455,45 @@ def _rejected_as_stand_ins(setup: Setup, state0: ModelState, state: ModelState,
     if earlier is not None:
         log["stand_ins"] = f"{earlier}; and {log['stand_ins']}"
     return state
+
+
+def _orphans(setup: Setup, state: ModelState, log: dict[str, Any]) -> ModelState:
+    """Stage 5c'': an effect accepted only as one of a pair (neither passed alone:
+    ``_pair``) whose partner is gone -- a stand-in, dropped or swapped out -- stays only when
+    it passes on its own with the rest of the final model in place: significant by both
+    noise filters and within its physical range. fresh31's ai12 (a brush drop that differs
+    by the current's sign, outside the catalog): a hub inertia, masked alone, was accepted
+    with a cogging as a pair; the cogging went as a stand-in and left the inertia +507 %
+    with no evidence of its own. Called in ``_unstable``'s loop too, so that what stays is
+    judged for stability without the orphan (there the rest, without the inertia, were
+    stand-ins as well, as without the pair)."""
+    pairs = log.get("pairs", {})
+    while True:
+        keys = {c.candidate.key for c in state.chosen}
+        orphans = [c for c in state.chosen
+                   if c.candidate.key in pairs and pairs[c.candidate.key] not in keys]
+        for choice in orphans:
+            keep = [c for c in state.chosen if c is not choice]
+            reduced = _without(setup, state, keep)
+            if reduced is None:
+                continue
+            gone = [c.candidate for c in state.chosen if c not in reduced.chosen]
+            verdict = judge(setup, reduced, Trial(tuple(gone), state.fit))
+            if verdict.delta_bic < -BIC_MARGIN and verdict.memory_bic < -BIC_MARGIN and \
+                    not verdict.at_bound and not verdict.beyond:
+                continue
+            partner = pairs[choice.candidate.key]
+            setup.log(f"dropped {choice.candidate.key}: accepted only with {partner}, which "
+                      f"is gone; on its own {verdict.note}")
+            for c in gone:
+                log["rejected"].append({
+                    "effect": c.effect, "target": c.target,
+                    "reason": f"accepted only as a pair with {partner}, which was taken out; "
+                              f"on its own with the rest of the model: {verdict.note}"})
+            state = reduced
+            break
+        else:
+            return state
 
 
 def _one_factor(setup: Setup, state0: ModelState, state: ModelState, log: dict[str, Any]
