@@ -2143,3 +2143,53 @@ def test_a_pair_member_whose_partner_is_gone_must_pass_on_its_own(monkeypatch):
     both = SimpleNamespace(chosen=[inertia, choice("cogging:rotor:3")], fit="final fit")
     assert engine._orphans(setup, both, {"rejected": [], "pairs": log["pairs"]}) is both
     assert judged == []
+
+
+def test_an_unstable_warm_up_is_replaced_by_its_straight_drift(monkeypatch):
+    """A warm-up's start (a shape) that won a round, found unstable at the end, gives its
+    place to the straight drift, started at the warm-up's initial slope rise/tau [1/s]
+    (fresh16's y09: the drift of the truth was never refitted); the straight drift must
+    pass against the model without the unstable effects, and every choice is re-tested,
+    the last one too. A plain drift found unstable is not revised this way."""
+    from types import SimpleNamespace
+
+    from circuitsim.loop.diagnose import engine
+    from circuitsim.loop.diagnose.context import Choice
+
+    def cand(key, free, shape=()):
+        effect, target = key.split(":")[:2]
+        return SimpleNamespace(key=key, effect=effect, target=target, free=free, shape=shape,
+                               kind=(effect, target, None))
+
+    warm = Choice(cand("resistance-drift:Ra:tau=6",
+                       {"rd_rise": (0.0, -0.5, 0.5), "rd_tau": (6.0, 0.05, 60.0)},
+                       ("rd_tau",)))
+    gain = Choice(cand("sensor-gain:current", {"g": (0.0, -0.5, 0.5)}))
+    line = cand("resistance-drift:Ra", {"rd_alpha": (0.0, -0.1, 0.1)})
+    state = SimpleNamespace(chosen=[warm, gain], params={"rd_rise": 0.06, "rd_tau": 6.0},
+                            fit="fit")
+    planned, calls = [], []
+    monkeypatch.setattr(engine, "_catalog", lambda setup, st: [line, warm.candidate])
+    monkeypatch.setattr(engine, "_without", lambda setup, st, keep: SimpleNamespace(
+        chosen=keep, fit="alone"))
+    monkeypatch.setattr(engine, "_replaced", lambda setup, st, i, other, starts:
+                        planned.append((i, other.key, dict(starts))) or "plan")
+    new = SimpleNamespace(chosen=[Choice(line), gain], fit="refit")
+    monkeypatch.setattr(engine, "_refitted", lambda setup, st, plans, what: [new])
+    monkeypatch.setattr(engine, "judge", lambda setup, alone, trial: SimpleNamespace(
+        passed=True, key=trial.candidates[0].key, note="ΔBIC -9e4"))
+    monkeypatch.setattr(engine, "_traded", lambda setup, s0, st: {})
+    monkeypatch.setattr(engine, "_backward", lambda setup, st, log, every=False:
+                        calls.append(every) or st)
+    setup = SimpleNamespace(log=lambda line: None)
+    log = {"trials": {}, "rejected": []}
+    unstable = [(warm, None), (gain, None)]
+    out = engine._plain(setup, "state0", state, "reduced", unstable, log)
+    assert out is new and calls == [True]
+    assert planned == [(0, "resistance-drift:Ra", {"rd_alpha": pytest.approx(0.01)})]
+    assert "replaced by its plain form resistance-drift:Ra" in log["rejected"][0]["reason"]
+    # once per kind; and a plain drift that is unstable is left to the stand-in stage
+    assert engine._plain(setup, "state0", state, "reduced", unstable, log) is None
+    plain = SimpleNamespace(chosen=[Choice(line)], params={}, fit="fit")
+    assert engine._plain(setup, "state0", plain, "reduced", [(Choice(line), None)],
+                         {"trials": {}, "rejected": []}) is None

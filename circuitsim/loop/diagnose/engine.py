@@ -1165,14 +1165,17 @@ def _take_order(setup: Setup, state: ModelState, i: int, new: ModelState,
     return new
 
 
-def _backward(setup: Setup, state: ModelState, log: dict[str, Any]) -> ModelState:
+def _backward(setup: Setup, state: ModelState, log: dict[str, Any], every: bool = False
+              ) -> ModelState:
     """Stage 5: re-test each earlier choice with the others present; drop one whose removal
-    costs less than the BIC margin (a stand-in for an effect accepted later)."""
+    costs less than the BIC margin (a stand-in for an effect accepted later). ``every``:
+    the last choice too (after a revision, the last was accepted beside what went)."""
     # every earlier choice's refit without it at once (they share this machine's cores); the
     # first that is no longer needed goes
+    tested = len(state.chosen) - (0 if every else 1)
     reductions = _withouts(setup, state, [[c for j, c in enumerate(state.chosen) if j != i]
-                                          for i in range(len(state.chosen) - 1)])
-    for choice, reduced in zip(state.chosen[:-1], reductions, strict=True):
+                                          for i in range(tested)])
+    for choice, reduced in zip(state.chosen[:tested], reductions, strict=True):
         if reduced is None:
             continue
         # what goes with it (a refinement of it) is judged with it: its parameters count too
@@ -1187,7 +1190,7 @@ def _backward(setup: Setup, state: ModelState, log: dict[str, Any]) -> ModelStat
                           f"dropped with the {choice.candidate.effect} it refines")
                 log["rejected"].append({"effect": c.effect, "target": c.target,
                                         "reason": reason})
-            return _backward(setup, reduced, log)
+            return _backward(setup, reduced, log, every)
     return state
 
 
@@ -1314,7 +1317,8 @@ def _unstable(setup: Setup, state0: ModelState, state: ModelState, log: dict[str
         if reduced is None:
             setup.log("the model without the unstable effect could not be refitted; it stays")
             break
-        shaped = _shaped(setup, state0, state, reduced, unstable, log)
+        shaped = _shaped(setup, state0, state, reduced, unstable, log) or \
+            _plain(setup, state0, state, reduced, unstable, log)
         if shaped is not None:
             # the model revised is the one later stand-ins are measured against
             state, whole = shaped, (shaped if not found else whole)
@@ -1389,6 +1393,56 @@ def _shaped(setup: Setup, state0: ModelState, state: ModelState, reduced: ModelS
                                     "reason": f"its law bent by {SHAPED_BEND}: replaced by "
                                               f"its shaped form {judged.key}"})
             return trial
+    return None
+
+
+def _plain(setup: Setup, state0: ModelState, state: ModelState, reduced: ModelState,
+           unstable: list[tuple[Choice, Any]], log: dict[str, Any]) -> ModelState | None:
+    """An unstable shaped form (``SHAPED_FORMS``: a warm-up) replaced by its plain form (a
+    straight drift), started at the shape's initial slope, the reverse of ``_shaped``: a
+    shape's start can win a round where the plain form was not refitted, and, rejected as a
+    stand-in, left the plain form untried (fresh16's y09: a warm-up at 6 s won the first
+    round beside the inertia, was unstable at the end, and the truth's straight drift was
+    never refitted). The plain form must pass ``judge`` against the model without the
+    unstable effects and trade no probe; every choice is then re-tested (``_backward``) and
+    what stays is judged for stability again.
+    Each kind is revised once, either way (``log['shaped']``)."""
+    done = log.setdefault("shaped", set())
+    for choice, _ in unstable:
+        cand = choice.candidate
+        if cand.effect not in SHAPED_FORMS or choice.correction or not cand.shape or \
+                cand.kind in done:
+            continue
+        done.add(cand.kind)
+        plains = [c for c in _catalog(setup, state) if c.kind == cand.kind and not c.shape]
+        others = [c for c in state.chosen if c is not choice]
+        alone = reduced if len(unstable) == 1 else (
+            _without(setup, state, others) if others else state0)
+        if not plains or alone is None:
+            continue
+        plain = plains[0]
+        rate_end, size_end = SHAPED_FORMS[cand.effect]
+        rate = next(n for n in plain.free if n.endswith(rate_end))
+        size = next(n for n in cand.free if n.endswith(size_end))
+        _, lo, hi = plain.free[rate]
+        starts = {n: spec[0] for n, spec in plain.free.items()}
+        starts[rate] = min(max(state.params[size] / state.params[cand.shape[0]], lo), hi)
+        i = next(j for j, c in enumerate(state.chosen) if c is choice)
+        (trial,) = _refitted(setup, state, [_replaced(setup, state, i, plain, starts)],
+                             "plain form")
+        if trial is None:
+            continue
+        judged = judge(setup, alone, Trial((plain,), trial.fit))
+        setup.log(f"  in place of {cand.key}: {plain.key}: {judged.note}")
+        if judged.passed and not _traded(setup, state0, trial):
+            log["trials"][judged.key] = judged
+            setup.log(f"revised: {judged.key} replaces {cand.key} (its plain form)")
+            log["rejected"].append({"effect": cand.effect, "target": cand.target,
+                                    "reason": f"its parameters not constants of the record: "
+                                              f"replaced by its plain form {judged.key}"})
+            # what was accepted beside the shape may have fitted around it: each choice is
+            # needed with the plain form in place, the last one too (y09's current gain)
+            return _backward(setup, trial, log, every=True)
     return None
 
 
