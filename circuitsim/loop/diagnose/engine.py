@@ -1426,7 +1426,9 @@ def _plain(setup: Setup, state0: ModelState, state: ModelState, reduced: ModelSt
         size = next(n for n in cand.free if n.endswith(size_end))
         _, lo, hi = plain.free[rate]
         starts = {n: spec[0] for n, spec in plain.free.items()}
-        starts[rate] = min(max(state.params[size] / state.params[cand.shape[0]], lo), hi)
+        # the shape's own values where fitted, else its starts (a shape held fixed)
+        rise, tau = (state.params.get(n, cand.free[n][0]) for n in (size, cand.shape[0]))
+        starts[rate] = min(max(rise / tau, lo), hi)
         i = next(j for j, c in enumerate(state.chosen) if c is choice)
         (trial,) = _refitted(setup, state, [_replaced(setup, state, i, plain, starts)],
                              "plain form")
