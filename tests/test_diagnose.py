@@ -2120,7 +2120,7 @@ def test_a_pair_member_whose_partner_is_gone_must_pass_on_its_own(monkeypatch):
         (cand,) = trial.candidates
         judged.append(cand.key)
         bic, memory = verdicts[cand.key]
-        return SimpleNamespace(delta_bic=bic, memory_bic=memory, at_bound=False, beyond="",
+        return SimpleNamespace(significant=bic < -10.0 and memory < -10.0,
                                note=f"ΔBIC {bic}, {memory} with the memory out")
 
     monkeypatch.setattr(engine, "_without", without)

@@ -95,11 +95,18 @@ class Trial:
             self.sse_before - self.sse_after < EXCESS_SHARE * excess
 
     @property
+    def significant(self) -> bool:
+        """Significant by both noise filters (the AR one and with the long memory taken
+        out) and within its physical range: what a share of the structure is asked of
+        beside, for acceptance (``passed``)."""
+        return self.delta_bic < -BIC_MARGIN and self.memory_bic < -BIC_MARGIN and \
+            not self.at_bound and not self.beyond
+
+    @property
     def passed(self) -> bool:
         line = self.fixes_its_line
-        return self.delta_bic < -BIC_MARGIN and self.memory_bic < -BIC_MARGIN and \
-            (self.share >= STRUCTURE_SHARE or line) and \
-            not self.at_bound and not self.beyond and (line or not self.small_of_large)
+        return self.significant and (self.share >= STRUCTURE_SHARE or line) and \
+            (line or not self.small_of_large)
 
     @property
     def masked(self) -> bool:

@@ -1366,9 +1366,7 @@ def _shaped(setup: Setup, state0: ModelState, state: ModelState, reduced: ModelS
             continue
         done.add(cand.kind)
         shapes = [c for c in _catalog(setup, state) if c.kind == cand.kind and c.shape]
-        others = [c for c in state.chosen if c is not choice]
-        alone = reduced if len(unstable) == 1 else (
-            _without(setup, state, others) if others else state0)
+        alone = _alone(setup, state0, state, reduced, unstable, choice)
         if not shapes or alone is None:
             continue
         plans = [_shaped_plan(setup, state, choice, c) for c in shapes]
@@ -1415,9 +1413,7 @@ def _plain(setup: Setup, state0: ModelState, state: ModelState, reduced: ModelSt
             continue
         done.add(cand.kind)
         plains = [c for c in _catalog(setup, state) if c.kind == cand.kind and not c.shape]
-        others = [c for c in state.chosen if c is not choice]
-        alone = reduced if len(unstable) == 1 else (
-            _without(setup, state, others) if others else state0)
+        alone = _alone(setup, state0, state, reduced, unstable, choice)
         if not plains or alone is None:
             continue
         plain = plains[0]
@@ -1446,6 +1442,17 @@ def _plain(setup: Setup, state0: ModelState, state: ModelState, reduced: ModelSt
             # needed with the plain form in place, the last one too (y09's current gain)
             return _backward(setup, trial, log, every=True)
     return None
+
+
+def _alone(setup: Setup, state0: ModelState, state: ModelState, reduced: ModelState,
+           unstable: list[tuple[Choice, Any]], choice: Choice) -> ModelState | None:
+    """The model without ``choice`` alone of the ``unstable`` ones (``reduced`` is without
+    all of them), against which its replacement is judged; None when it cannot be
+    refitted."""
+    if len(unstable) == 1:
+        return reduced
+    others = [c for c in state.chosen if c is not choice]
+    return _without(setup, state, others) if others else state0
 
 
 def _asks_for_shape(choice: Choice, verdict: Any) -> bool:
@@ -1535,8 +1542,7 @@ def _orphans(setup: Setup, state: ModelState, log: dict[str, Any]) -> ModelState
                 continue
             gone = [c.candidate for c in state.chosen if c not in reduced.chosen]
             verdict = judge(setup, reduced, Trial(tuple(gone), state.fit))
-            if verdict.delta_bic < -BIC_MARGIN and verdict.memory_bic < -BIC_MARGIN and \
-                    not verdict.at_bound and not verdict.beyond:
+            if verdict.significant:
                 continue
             partner = pairs[choice.candidate.key]
             setup.log(f"dropped {choice.candidate.key}: accepted only with {partner}, which "
