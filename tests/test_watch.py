@@ -21,6 +21,7 @@ def _paced(paces: list[float], stop: float = 1.0) -> Watch:
     w.judge(t, y, yp)
     for gained in paces:
         t += gained
+        w.count += WINDOW
         w.judge(t, y, yp)
     return w
 
@@ -99,6 +100,30 @@ def test_a_run_that_cannot_finish_stops_with_exit_1_and_says_why(tmp_path, capsy
     assert rc == 1
     assert "slows down" in err and "fastest-changing variable" in err
     assert "A parameter far from its physical value" in err
+
+
+def test_the_compiled_route_stops_the_same_run(tmp_path, monkeypatch):
+    """A sweep's or a fit's run goes on the compiled kernels: IDA's own count of evaluations
+    is judged by the same rule (a sweep at 1e12 V ran 101 s to an "ok" row before)."""
+    pytest.importorskip("numba")
+    import circuitsim as cs
+    from circuitsim.solve import direct
+
+    groups = []
+    to = direct.DirectIDA._to
+
+    def spied(self, *args):
+        groups.append(self.watch is not None)
+        return to(self, *args)
+
+    monkeypatch.setattr(direct.DirectIDA, "_to", spied)
+    monkeypatch.setenv("CIRCUITSIM_KERNELS", "numba")
+    path = tmp_path / "chirp.yaml"
+    path.write_text(CHIRP)
+    res = cs.compile(cs.load(path)).simulate()
+    assert groups and all(groups)  # the compiled route ran, watched
+    assert not res.success
+    assert "slows down" in res.message and "fastest-changing variable: out.v" in res.message
 
 
 def test_a_value_that_overflows_the_arithmetic_is_named_without_numpy_warnings(capsys,

@@ -458,6 +458,7 @@ def _freqs(text: str, points: int) -> list[float]:
 
 def cmd_op(args) -> int:
     from circuitsim.solve.op import operating_point, probe_values
+    from circuitsim.solve.watch import huge_parameters
 
     model = _load_model(args.netlist, args.allow_outside)
     params = _parse_sets(model, args.set or [])
@@ -465,10 +466,13 @@ def cmd_op(args) -> int:
     probes = probe_values(model, op, params, t=args.time)
     bad = [k for k, v in probes.items() if not math.isfinite(v)]
     if bad:
-        raise SolverError(f"operating point: probe '{bad[0]}' is {probes[bad[0]]}: its "
-                          f"expression has no real value at the operating point (a division "
-                          f"by zero, a negative number to a fractional power); guard it, e.g. "
-                          f"with max(..., small)")
+        # a parameter beyond any physical value overflows a probe (V i at V = 1e301) whether
+        # or not Newton converged: name it, not the expression
+        huge = huge_parameters(model, model.frozen_vector(params))
+        raise SolverError(f"operating point: probe '{bad[0]}' is {probes[bad[0]]}" + (
+            huge or ": its expression has no real value at the operating point (a division "
+            "by zero, a negative number to a fractional power); guard it, e.g. with "
+            "max(..., small)"))
     if args.json:
         print(json.dumps({"states": dict(zip(op.names, op.y.tolist(), strict=True)),
                           "rates": {n: float(r) for n, r in zip(op.names, op.yp, strict=True)

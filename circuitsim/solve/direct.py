@@ -263,8 +263,10 @@ class DirectIDA:
     ``integrate`` uses (``solve`` over a time span), with the same options."""
 
     def __init__(self, module, opts: dict, members: list | None = None,
-                 data: np.ndarray | None = None, kind: str = "dense"):
+                 data: np.ndarray | None = None, kind: str = "dense", watch: Any = None):
         self.module, self.opts = module, opts
+        # the run's runaway watch (solve/watch.py), told IDA's evaluations as it goes
+        self.watch = watch
         # one model, or K members stacked (solve/batch.py: band solver, K parameter vectors)
         self.members = members
         # a large model's user data (parameters, then its linear part's CSR arrays) and the
@@ -338,7 +340,6 @@ class DirectIDA:
         return np.array(data, dtype=float), residual, jacobian
 
     def _run(self, lib, h: dict, tspan: np.ndarray) -> Result:
-        from circuitsim.solve import kernel_lib
         from circuitsim.solve.sundae import ida_messages
 
         ida, n = lib["ida"], h["n"]
@@ -364,11 +365,7 @@ class DirectIDA:
         done, flag = 1, 0
         for end in ends:
             ida.IDASetStopTime(h["mem"], float(times[end]))
-            # the loop over the output times is compiled too (2 µs an output time in Python)
-            k, flag = sys.modules[kernel_lib.KERNEL_LIB].outputs(
-                h["mem"].value, h["yy"], h["yp"], times[done - 1:end + 1], h["Y"], h["YP"],
-                out_t[done - 1:], out_y[done - 1:], out_yp[done - 1:])
-            done += k - 1
+            done, flag = self._to(lib, h, times, done, end, (out_t, out_y, out_yp))
             if flag < 0 or flag == ROOT_RETURN:
                 break
         keep = np.isin(out_t[:done], tspan)
@@ -385,6 +382,34 @@ class DirectIDA:
                       ida_messages().get(flag, f"IDA flag {flag}"), counts[0].value,
                       counts[1].value, flag, events)
 
+    def _to(self, lib, h: dict, times: np.ndarray, done: int, end: int,
+            out: tuple[np.ndarray, np.ndarray, np.ndarray]) -> tuple[int, int]:
+        """Step to the output times up to ``times[end]`` in the compiled loop (2 µs an
+        output time in Python), the rows filled after ``done``; a watched run in groups of
+        about WINDOW evaluations, the watch told after each. The rows filled and IDA's flag."""
+        from circuitsim.solve import kernel_lib
+        from circuitsim.solve.watch import WINDOW
+
+        outputs = sys.modules[kernel_lib.KERNEL_LIB].outputs
+        out_t, out_y, out_yp = out
+        group = end - done + 1 if self.watch is None else h.get("group", 16)
+        while True:
+            last = min(end, done - 1 + group)
+            k, flag = outputs(h["mem"].value, h["yy"], h["yp"], times[done - 1:last + 1],
+                              h["Y"], h["YP"], out_t[done - 1:], out_y[done - 1:],
+                              out_yp[done - 1:])
+            done += k - 1
+            if self.watch is not None:
+                count = ctypes.c_long()
+                lib["ida"].IDAGetNumResEvals(h["mem"], ctypes.byref(count))
+                evals, h["evals"] = count.value - h.get("evals", 0), count.value
+                # the next group: about one window's evaluations at this group's rate
+                group = h["group"] = int(np.clip(WINDOW * max(k - 1, 1) / max(evals, 1),
+                                                 1, 4096))
+                self.watch.advance(evals, float(out_t[done - 1]), h["Y"], h["YP"])
+            if flag < 0 or flag == ROOT_RETURN or done > end:
+                return done, flag
+
     @staticmethod
     def _free(lib, ctx, h: dict) -> None:
         lib["ida"].IDAFree(ctypes.byref(h["mem"]))
@@ -395,12 +420,12 @@ class DirectIDA:
         lib["core"].SUNContext_Free(ctypes.byref(ctx))
 
 
-def ida_for(opts: dict) -> DirectIDA | None:
+def ida_for(opts: dict, watch: Any = None) -> DirectIDA | None:
     """A DirectIDA for ``opts["kernels_of"]`` = (model, None) or, for a stacked batch, (model,
     members' parameter vectors) when kernels are wanted, the model has them and they fill
     the matrix of the linear solver the Python route would use, else None (also when they
     cannot be built or the libraries cannot serve them: the Python route then runs, with one
-    warning a process for each reason)."""
+    warning a process for each reason). ``watch``: the run's runaway watch, if it has one."""
     model, members = opts["kernels_of"]
     if not wanted():
         return None
@@ -427,7 +452,7 @@ def ida_for(opts: dict) -> DirectIDA | None:
         return None
     if module is None or kind is None:
         return None
-    return DirectIDA(module, opts, members, data, kind)
+    return DirectIDA(module, opts, members, data, kind, watch)
 
 
 #: the refusals warned about in this process: a run asks once per segment, and a process runs

@@ -27,7 +27,7 @@ import numpy as np
 from circuitsim.errors import SolverError, spoken
 from circuitsim.solve.init import consistent_initial
 from circuitsim.solve.kernel_lib import BAND_ABS, BAND_REL, ROOT_RETURN
-from circuitsim.solve.watch import Runaway
+from circuitsim.solve.watch import Runaway, watch_of
 
 #: Rounds of event iteration at one instant before the switching is declared chattering
 #: (a half-bridge commutation takes three: gate off, diode on, dead time over).
@@ -209,7 +209,7 @@ def watching_ida(residual, opts: dict):
     if "kernels_of" in opts:
         from circuitsim.solve.direct import ida_for
 
-        direct = ida_for(opts)
+        direct = ida_for(opts, watch_of(residual))
         if direct is not None:
             return direct
     if opts.get("stops") is not None:

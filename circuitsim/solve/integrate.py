@@ -23,7 +23,7 @@ from circuitsim.solve import events
 from circuitsim.solve.init import check_initial, consistent_initial, initial_state
 from circuitsim.solve.result import SimResult, Status
 from circuitsim.solve.sources import bound_step
-from circuitsim.solve.watch import HUGE, Runaway, huge_parameters, watched
+from circuitsim.solve.watch import HUGE, Runaway, huge_parameters, watch_of, watched
 
 
 def break_times(model, values: Mapping[str, float], stop: float) -> list[float]:
@@ -50,7 +50,7 @@ def make_ida(residual, opts: dict):
     if "kernels_of" in opts:
         from circuitsim.solve.direct import ida_for
 
-        direct = ida_for(opts)
+        direct = ida_for(opts, watch_of(residual))
         if direct is not None:
             return direct
         # never reached with stops: integrate takes its own step loop for them then

@@ -15,9 +15,12 @@ its pace kept falling over them, by ``SLOWING`` at least: a run that runs away s
 goes. A long run at a steady pace (a PWM drive simulated for minutes) is never stopped, however
 long it is, nor is a start-up transient that is slow for a while. The decision depends on
 counts and simulated times only, never on the clock, so a run is stopped, or not, the same way
-on every machine. The compiled route and the stacked batches of fits and diagnoses are not
-watched: their runs are the fit's own, bounded by IDA's steps per output time.
-``CIRCUITSIM_RUNAWAY=off`` turns the watch off for a run meant to be that long.
+on every machine. A run on the compiled kernels (``solve/direct.py``: a sweep's, a fit's
+single runs) is watched by the same rule on IDA's own count of evaluations, read between
+groups of output times (``advance``), so ``run`` and ``sweep`` stop the same run. The stacked
+batches of fits and diagnoses are not watched: their runs are the fit's own, bounded by IDA's
+steps per output time. ``CIRCUITSIM_RUNAWAY=off`` turns the watch off for a run meant to be
+that long.
 """
 
 from __future__ import annotations
@@ -60,6 +63,11 @@ class Runaway(SolverError):
     """The run's pace projects it far beyond any reasonable number of evaluations."""
 
 
+def watch_of(residual: Callable) -> Watch | None:
+    """The watch a System's residual carries, for the compiled route to report to."""
+    return residual if isinstance(residual, Watch) else None
+
+
 def watched(residual: Callable, stop: float, names: Sequence[str], rtol: float,
             atol: float) -> Callable:
     """``residual`` itself when the watch is off, else ``residual`` watched (``Watch``)."""
@@ -77,6 +85,7 @@ class Watch:
         self.rtol, self.atol = rtol, atol
         self.count = 0
         self.mark: float | None = None  # [s] the simulated time at the last judgement
+        self.mark_count = 0  # the evaluations counted at the last judgement
         self.paces: list[float] = []  # [s] gained per window, the last ones over the limit
 
     def __call__(self, t, y, yp, res, p):
@@ -86,13 +95,25 @@ class Watch:
             self.judge(float(t), y, yp)
         return self.residual(t, y, yp, res, p)
 
+    def advance(self, evals: int, t: float, y, yp) -> None:
+        """The compiled route's account: ``evals`` more evaluations brought the run to t.
+        Judged once whenever the count passes a multiple of WINDOW (the caller reads IDA's
+        count about once a window)."""
+        before, self.count = self.count, self.count + int(evals)
+        if self.count // WINDOW > before // WINDOW:
+            self.judge(float(t), y, yp)
+
     def judge(self, t: float, y, yp) -> None:
         """Raise ``Runaway`` when the pace has projected more than LIMIT further evaluations
         at STRIKES judgements in a row, falling at each and by SLOWING over them."""
         if self.mark is None:
-            self.mark = t
+            self.mark, self.mark_count = t, self.count
             return
-        gained, self.mark = t - self.mark, t
+        # [s] per WINDOW evaluations: the Python route judges every WINDOW exactly, the
+        # compiled route after about as many
+        span = max(self.count - self.mark_count, 1)
+        gained = (t - self.mark) * WINDOW / span
+        self.mark, self.mark_count = t, self.count
         projected = np.inf if gained <= 0 else max(self.stop - t, 0.0) / gained * WINDOW
         if projected <= LIMIT:
             self.paces = []
