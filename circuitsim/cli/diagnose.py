@@ -2,11 +2,11 @@
 
 from __future__ import annotations
 
-import argparse
 import json
 import sys
 import warnings
 
+from circuitsim.cli.argtypes import whole
 from circuitsim.cli.fit import _rtol
 from circuitsim.files import atomic_write, check_output
 from circuitsim.loop.diagnose import diagnose, diagnose_features
@@ -16,18 +16,6 @@ from circuitsim.report.diagnosis import write_html
 
 def _atomic_text(path: str, text: str) -> None:
     atomic_write(path, text, make_dirs=False)
-
-
-def _count(text: str) -> int:
-    """An argparse ``type``: a whole number of effects, 0 or more (0: fit and describe only)."""
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"'{text}' is not a whole number") from None
-    if value < 0:
-        raise argparse.ArgumentTypeError(f"'{text}' must be 0 or more (0: fit the declared "
-                                         f"model and describe its residual)")
-    return value
 
 
 def add_cli(sub) -> None:
@@ -49,7 +37,8 @@ def add_cli(sub) -> None:
     d.add_argument("--time", default="time", help="name of the time column [s]")
     d.add_argument("--inputs", default="", help="other columns of the CSV that are not "
                    "probes (measured inputs, unused signals), comma-separated")
-    d.add_argument("--max-effects", type=_count, default=MAX_EFFECTS,
+    d.add_argument("--max-effects", type=whole(0, hint=" (0: fit the declared model and describe its residual)"),
+                   default=MAX_EFFECTS,
                    help=f"largest number of effects to add (default {MAX_EFFECTS})")
     d.add_argument("--set", action="append", metavar="NAME=VALUE",
                    help="override a parameter (units checked); for a declared free one, its "

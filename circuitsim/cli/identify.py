@@ -4,13 +4,15 @@ from __future__ import annotations
 
 import argparse
 import json
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
+from circuitsim.cli.argtypes import fraction, positive, whole
 from circuitsim.loop.identify import (
+    MAX_ORDER,
     ObserverResult,
-    _Args,
     _col,
     _emf_arg,
     _ints,
@@ -22,15 +24,27 @@ from circuitsim.loop.identify import (
     fit_back_emf,
     fit_disturbance,
     fit_periodic_map,
-    fraction,
     mutual_torque,
     peak_cogging,
-    positive,
     relevant_orders,
-    whole,
 )
 from circuitsim.loop.record import DataError
 from circuitsim.report.identify import _plot_curve, _plot_map
+
+
+@dataclass
+class _Args:
+    """Shared options of the record-based subcommands."""
+
+    common: list[tuple[tuple[str, ...], dict]] = field(default_factory=lambda: [
+        (("--pp",), {"type": whole(1, 500), "required": True, "help": "pole pairs p [1]"}),
+        (("--theta",), {"default": "theta", "help": "rotor angle column [rad]"}),
+        (("--omega",), {"default": "omega", "help": "rotor speed column [rad/s]"}),
+    ])
+
+    def add(self, parser: argparse.ArgumentParser) -> None:
+        for flags, kw in self.common:
+            parser.add_argument(*flags, **kw)
 
 
 def _ts(rec, path, time_col: str) -> float:
@@ -192,7 +206,7 @@ def add_cli(subparsers) -> None:
     shared.add(e)
     e.add_argument("--voltage", default="e1", help="phase-to-neutral voltage column [V]")
     e.add_argument("--shift", type=float, default=0.0, help="electrical phase of this phase")
-    e.add_argument("--k-max", type=whole(1), default=9, help="largest K of the J_min curve")
+    e.add_argument("--k-max", type=whole(1, MAX_ORDER), default=9, help="largest K of the J_min curve")
     e.add_argument("--rel-tol", type=fraction, default=1e-4,
                    help="relevant order: J_min drop above this fraction of the signal energy")
     e.add_argument("--orders", help="fit these orders (default 1..largest relevant)")
@@ -216,7 +230,7 @@ def add_cli(subparsers) -> None:
     c.add_argument("--no-coulomb", action="store_true", help="no C sign(w) term")
     c.add_argument("--raw", action="store_true",
                    help="take the compensator output as the disturbance (Kapun's plain fit)")
-    c.add_argument("--k-max", type=whole(0), default=0, help="print J_min for K = 0..K_MAX")
+    c.add_argument("--k-max", type=whole(0, MAX_ORDER), default=0, help="print J_min for K = 0..K_MAX")
     c.add_argument("--plot", help="PNG of J_min versus K (with --k-max)")
     c.add_argument("--json", action="store_true", help="print one JSON object")
     c.set_defaults(func=_cmd_cogging)
@@ -226,8 +240,8 @@ def add_cli(subparsers) -> None:
     m.add_argument("--value", default="iq_hold_A", help="torque or current column")
     m.add_argument("--where", action="append", help="keep rows with COLUMN=VALUE")
     m.add_argument("--direction", help="sweep direction column (forward/reverse): adds C")
-    m.add_argument("--count", type=whole(1), default=8, help="orders to select")
-    m.add_argument("--k-max", type=whole(1), default=100, help="largest order searched")
+    m.add_argument("--count", type=whole(1, MAX_ORDER), default=8, help="orders to select")
+    m.add_argument("--k-max", type=whole(1, MAX_ORDER), default=100, help="largest order searched")
     m.add_argument("--orders", help="fit these orders instead of searching")
     m.add_argument("--plot", help="PNG of the map and the fit")
     m.add_argument("--json", action="store_true", help="print one JSON object")

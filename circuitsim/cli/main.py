@@ -16,49 +16,15 @@ import os
 import signal
 import sys
 import warnings
-from collections.abc import Callable
 from pathlib import Path
 
+from circuitsim.cli.argtypes import quantity
 from circuitsim.errors import CircuitsimError, ParameterError, SolverError
 from circuitsim.files import atomic_write, check_output
 from circuitsim.report.plots import _bode, _lean_import, plot
 
 ALLOW_HELP = ("let the netlist include or read tables from files outside its own folder tree "
               "(refused by default: a netlist from someone else must not read your files)")
-
-
-def parse_quantity(text: str, unit: str) -> float:
-    """A value typed on the command line, in SI: a number, a number with a unit (``10 ms``)
-    or with a SPICE multiplier (``10m``, ``2k``), or a temperature alone in Celsius (``20
-    degC``); the unit is checked against ``unit``.
-
-    Raises ValueError saying what was wrong.
-    """
-    from circuitsim.netlist.load import typed_value
-    from circuitsim.units import unit_info
-
-    return typed_value(text, unit_info(unit)[1], unit)
-
-
-def quantity(unit: str, minimum: float | None = 0.0, inclusive: bool = False
-             ) -> Callable[[str], float]:
-    """An argparse ``type``: a finite value in ``unit`` above ``minimum`` (or at it when
-    ``inclusive``); argparse turns the refusal into 'error: argument --x: ...' and exit 2."""
-
-    def parse(text: str) -> float:
-        try:
-            value = parse_quantity(text, unit)
-        except ValueError as exc:
-            raise argparse.ArgumentTypeError(str(exc)) from None
-        if not math.isfinite(value):
-            raise argparse.ArgumentTypeError(f"'{text}' is not a finite value")
-        if minimum is not None and (value < minimum or (value == minimum and not inclusive)):
-            rel = ">=" if inclusive else ">"
-            raise argparse.ArgumentTypeError(f"'{text}' must be {rel} {minimum:g} {unit}")
-        return value
-
-    parse.__name__ = f"value in {unit}"  # argparse names the type in its messages
-    return parse
 
 
 def _parse_sets(model, items: list[str]) -> dict[str, float]:

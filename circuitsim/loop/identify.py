@@ -31,11 +31,10 @@ Only numpy is imported at module level: the command line imports this module on 
 
 from __future__ import annotations
 
-import argparse
 import functools
 import math
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -625,42 +624,6 @@ def _ints(text: str) -> list[int]:
 MAX_ORDER = 1000
 
 
-def whole(low: int, high: int = MAX_ORDER):
-    """An argparse ``type``: a whole number in [low, high] (argparse says 'error: argument
-    --x: ...' and exits 2 otherwise)."""
-
-    def parse(text: str) -> int:
-        try:
-            value = int(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"'{text}' is not a whole number") from None
-        if not low <= value <= high:
-            raise argparse.ArgumentTypeError(f"'{text}' must lie in {low}..{high}")
-        return value
-
-    parse.__name__ = "whole number"
-    return parse
-
-
-def positive(text: str) -> float:
-    """An argparse ``type``: a finite number above 0."""
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"'{text}' is not a number") from None
-    if not (math.isfinite(value) and value > 0):
-        raise argparse.ArgumentTypeError(f"'{text}' must be a finite number > 0")
-    return value
-
-
-def fraction(text: str) -> float:
-    """An argparse ``type``: a number in (0, 1)."""
-    value = positive(text)
-    if value >= 1:
-        raise argparse.ArgumentTypeError(f"'{text}' must be a fraction in (0, 1)")
-    return value
-
-
 def _emf_arg(text: str, pp: int) -> EmfFit:
     """'1:5817e-6,3:57e-6' (order:a or order:a:b) as an EmfFit."""
     a: dict[int, float] = {}
@@ -678,21 +641,6 @@ def _emf_arg(text: str, pp: int) -> EmfFit:
         except ValueError:
             raise DataError(f"--emf '{part}': not numbers") from None
     return emf_from_coefficients(a, b, pp)
-
-
-@dataclass
-class _Args:
-    """Shared options of the record-based subcommands."""
-
-    common: list[tuple[tuple[str, ...], dict]] = field(default_factory=lambda: [
-        (("--pp",), {"type": whole(1, 500), "required": True, "help": "pole pairs p [1]"}),
-        (("--theta",), {"default": "theta", "help": "rotor angle column [rad]"}),
-        (("--omega",), {"default": "omega", "help": "rotor speed column [rad/s]"}),
-    ])
-
-    def add(self, parser: argparse.ArgumentParser) -> None:
-        for flags, kw in self.common:
-            parser.add_argument(*flags, **kw)
 
 
 def _read_csv(path: str, where: list[str] | None = None) -> dict[str, np.ndarray]:
