@@ -53,7 +53,7 @@ SPLITS = ("tune", "heldout", "fresh", "fresh2", "fresh3", "fresh4", "fresh5", "f
           "fresh28", "fresh29", "fresh30", "fresh31", "fresh32", "fresh33", "fresh34",
           "fresh35", "fresh36", "fresh37", "fresh38", "fresh39", "fresh40",
           "fresh41", "fresh42", "fresh43", "fresh44", "fresh45", "fresh46", "fresh47",
-          "fresh48", "fresh49")
+          "fresh48", "fresh49", "fresh50")
 VERDICTS = ("right", "tie", "nothing", "nothing+structure", "partial", "wrong", "failed")
 #: [sigma] a marginal truth this close to another catalog effect's imprint (truth.json's
 #: separation_sigma, computed on the scipy models), or an effect this close to itself on the
@@ -158,11 +158,26 @@ def child(rid: str) -> int:
         out["error"] = f"{type(exc).__name__}: {exc}"
         out["traceback"] = traceback.format_exc()[-4000:]
     out["wall_s"] = time.perf_counter() - t0
+    out["versions"] = _versions()
     RESULTS.mkdir(exist_ok=True)
     tmp = RESULTS / f".{rid}.json.tmp"
     tmp.write_text(json.dumps(_jsonable(out), indent=1))
     os.replace(tmp, RESULTS / f"{rid}.json")
     return 0
+
+
+def _versions() -> dict[str, str]:
+    """The numerical libraries a result was computed with: a search whose path turns on a
+    near tie (ai12) can take another path under another release of them."""
+    from importlib.metadata import PackageNotFoundError, version
+
+    out = {"python": sys.version.split()[0]}
+    for name in ("numpy", "scipy", "sympy", "scikit-sundae", "numba"):
+        try:
+            out[name] = version(name)
+        except PackageNotFoundError:
+            out[name] = "absent"
+    return out
 
 
 # ----------------------------------------------------------------------- scoring
