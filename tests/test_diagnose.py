@@ -759,12 +759,13 @@ def test_a_law_whose_effect_must_change_by_a_fair_part_of_itself_is_bent(phi):
     a tenth of what the model leaves (a residual dominated by noise). With k = 0 (a right
     law) the bend's coefficients are noise, and their factor can vary by 0.3: the size alone
     is no verdict, and over 20 seeds of white and of AR(1) noise such a bend never passes
-    the BIC margin, so the law is never bent. A harmonic of a shaft (not ``ranged``) is not
-    judged by its size, and a bend inside the margin is no verdict at any size."""
+    the BIC margin, so the law is never bent. A harmonic of a shaft (not ``ranged``) is
+    judged by its size only from HARMONIC_RANGE on (a ripple that must vanish or double), and
+    a bend inside the margin is no verdict at any size."""
     from types import SimpleNamespace
 
     from circuitsim.loop.diagnose.decide import BIC_MARGIN
-    from circuitsim.loop.diagnose.law import LAW_RANGE, LawTest, _removed, spread_of
+    from circuitsim.loop.diagnose.law import HARMONIC_RANGE, LAW_RANGE, LawTest, _removed, spread_of
     from circuitsim.loop.diagnose.regress import added_test
 
     n, top = 6000, 400.0
@@ -805,6 +806,10 @@ def test_a_law_whose_effect_must_change_by_a_fair_part_of_itself_is_bent(phi):
     harmonic = LawTest(-50.0, 60.0, ("|w|", "w^2"), 0.05, (2.0, -1.0), spread=0.7,
                        ranged=False)
     assert not harmonic.bent and "caveat" in harmonic.as_dict()
+    # a ripple locked to an angle whose amplitude must vanish or double over the record
+    vanishing = dataclasses.replace(harmonic, spread=HARMONIC_RANGE * 1.01)
+    assert vanishing.bent and "varies by 101% of itself" in vanishing.why()
+    assert not dataclasses.replace(vanishing, delta_bic=-5.0).bent
     for seed in range(20):
         right = case(0.0, seed)
         assert not right.significant and not right.bent, (seed, right)

@@ -85,8 +85,17 @@ LAW_SHARE = 0.3
 #: was set. A harmonic of a shaft's angle is not judged by it (``ranged``): on the one real
 #: log of cogging (the ODrive) its orders' laws bend by 0.11-0.74 of themselves with ΔBIC
 #: -13 to -819 -- the drive's loop is not the model's -- and a harmonic is held to its line
-#: instead (``decide.OWN_LINE_SHARE``).
+#: instead (``decide.OWN_LINE_SHARE``), and to ``HARMONIC_RANGE``.
 LAW_RANGE = 0.1
+#: Variation over the record that a significant bend may ask of a shaft's harmonic (a
+#: cogging, an unbalance, an EMF harmonic) before its law is wrong: at 1 its amplitude must
+#: vanish or double somewhere in the record, which no ripple locked to an angle does -- its
+#: size is the machine's geometry. A drive's loop that the model lacks bends a real cogging
+#: by at most 0.74 (the ODrive, above). Set on 2026-12-01 from that reading, with ai12 in
+#: hand (fresh31, one-way angled brushes read by the current alone: coggings of orders 51
+#: and 3 beside a symmetric brush drop, bent by 17.0 and 1.12 of themselves, took the
+#: asymmetry the drop's direction bend shows once they are gone).
+HARMONIC_RANGE = 1.0
 #: A sensor's delay is held to its own time scale instead (``DELAY_DEPARTURE``). Any linear
 #: stage that delays a reading by about tau reads x(t - tau) + c2 tau^2 x^(2) + c3 tau^3
 #: x^(3) + ... (the Taylor series of H(s) e^{s tau} in s tau), and for a pure delay c2 = c3
@@ -150,7 +159,8 @@ class LawTest:
     #: (``spread_of``); a delay's: its largest significant departure |c_k| from a delay
     #: (``_departure``); 0 for a gain's or an offset's [-]
     spread: float = 0.0
-    ranged: bool = True  # judged by its spread too (``LAW_RANGE``; not a shaft's harmonic)
+    #: judged by its spread against ``LAW_RANGE`` (a shaft's harmonic: ``HARMONIC_RANGE``)
+    ranged: bool = True
     #: the angles of its cosine and sine shapes that span under one turn over the record,
     #: with the turns they span: no ripple once per turn, a slow change with the angle
     part_turns: tuple[tuple[str, float], ...] = ()
@@ -159,11 +169,13 @@ class LawTest:
     def bent(self) -> bool:
         """The law does not hold: its bend is significant and takes a fair share of what
         the final model leaves, or makes the effect vary by a fair part of itself over the
-        record (``LAW_RANGE``; not for a shaft's harmonic, see there), or a delay depart
-        from a delay (``DELAY_DEPARTURE``)."""
-        limit = LAW_RANGE if self.relative else DELAY_DEPARTURE
-        return self.significant and (self.removed >= LAW_SHARE or
-                                     (self.ranged and self.spread >= limit))
+        record (``LAW_RANGE``; a shaft's harmonic by as much as itself, ``HARMONIC_RANGE``),
+        or a delay depart from a delay (``DELAY_DEPARTURE``)."""
+        if not self.relative:
+            limit = DELAY_DEPARTURE
+        else:
+            limit = LAW_RANGE if self.ranged else HARMONIC_RANGE
+        return self.significant and (self.removed >= LAW_SHARE or self.spread >= limit)
 
     def why(self) -> str:
         """The bend, in words (see ``_shapes``)."""
@@ -245,7 +257,7 @@ class Bend:
     words: tuple[str, ...]
     relative: bool
     shapes: tuple[np.ndarray, ...] = ()  # a circuit's law: each psi_j over the record [-]
-    ranged: bool = True  # its spread is judged (not a shaft's harmonic: ``LAW_RANGE``)
+    ranged: bool = True  # its spread is judged by ``LAW_RANGE`` (False: a shaft's harmonic)
     #: a delay's: each bend's own scale, tau^k for the k-th derivative [s^k]
     scales: tuple[float, ...] = ()
     part_turns: tuple[tuple[str, float], ...] = ()  # as LawTest's
