@@ -2198,3 +2198,54 @@ def test_an_unstable_warm_up_is_replaced_by_its_straight_drift(monkeypatch):
     plain = SimpleNamespace(chosen=[Choice(line)], params={}, fit="fit")
     assert engine._plain(setup, "state0", plain, "reduced", [(Choice(line), None)],
                          {"trials": {}, "rejected": []}) is None
+
+
+def test_an_unstable_effect_gives_its_place_to_the_tie_of_its_round(monkeypatch):
+    """An effect found unstable whose round held a passing single within the BIC margin of
+    it (the report says the data cannot tell them apart) is replaced by that tie, when the
+    tie passes against the model without the unstable effects (EMPS on one machine's BLAS:
+    the force on the cart won its tie with the reading's offset by 0.5 and went as a
+    stand-in; the offset was never tried). A tie outside the margin, a correction, or a
+    second pass over the same effects is not revised."""
+    from types import SimpleNamespace
+
+    from circuitsim.loop.diagnose import engine
+    from circuitsim.loop.diagnose.context import Choice
+
+    def cand(key, free):
+        effect, target = key.split(":")[:2]
+        return SimpleNamespace(key=key, effect=effect, target=target, free=free)
+
+    force = Choice(cand("force-offset:cart", {"f": (0.0, -1e3, 1e3)}))
+    fc = Choice(cand("coulomb-friction:cart", {"c": (0.0, 0.0, 1e3)}))
+    offset = cand("sensor-offset:motor_force_N", {"o": (0.0, -1e3, 1e3)})
+
+    def trial(c, dbic):
+        return SimpleNamespace(candidates=(c,), delta_bic=dbic)
+
+    state = SimpleNamespace(chosen=[fc, force], params={}, fit="fit")
+    planned = []
+    monkeypatch.setattr(engine, "_replaced", lambda setup, st, i, other, starts:
+                        planned.append((i, other.key, dict(starts))) or "plan")
+    new = SimpleNamespace(chosen=[fc, Choice(offset)], fit="refit")
+    monkeypatch.setattr(engine, "_refitted", lambda setup, st, plans, what: [new])
+    monkeypatch.setattr(engine, "judge", lambda setup, alone, t: SimpleNamespace(
+        passed=True, key=t.candidates[0].key, note="ΔBIC -908.8"))
+    monkeypatch.setattr(engine, "_traded", lambda setup, s0, st: {})
+    setup = SimpleNamespace(log=lambda line: None)
+
+    def log_with(alt_dbic):
+        return {"trials": {force.candidate.key: trial(force.candidate, -909.9)},
+                "rounds": {force.candidate.key: [trial(offset, alt_dbic)]}, "rejected": []}
+
+    log = log_with(-909.4)
+    out = engine._tied(setup, "state0", state, "reduced", [(force, None)], log)
+    assert out is new and planned == [(1, "sensor-offset:motor_force_N", {"o": 0.0})]
+    assert "which its round could not tell from it" in log["rejected"][0]["reason"]
+    assert engine._tied(setup, "state0", state, "reduced", [(force, None)], log) is None
+    # a tie outside the margin is another effect, not the same evidence
+    far = log_with(-909.9 + 2 * engine.BIC_MARGIN)
+    assert engine._tied(setup, "state0", state, "reduced", [(force, None)], far) is None
+    correction = Choice(force.candidate, True)
+    assert engine._tied(setup, "state0", SimpleNamespace(chosen=[fc, correction]),
+                        "reduced", [(correction, None)], log_with(-909.4)) is None

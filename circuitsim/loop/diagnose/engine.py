@@ -1318,7 +1318,8 @@ def _unstable(setup: Setup, state0: ModelState, state: ModelState, log: dict[str
             setup.log("the model without the unstable effect could not be refitted; it stays")
             break
         shaped = _shaped(setup, state0, state, reduced, unstable, log) or \
-            _plain(setup, state0, state, reduced, unstable, log)
+            _plain(setup, state0, state, reduced, unstable, log) or \
+            _tied(setup, state0, state, reduced, unstable, log)
         if shaped is not None:
             # the model revised is the one later stand-ins are measured against
             state, whole = shaped, (shaped if not found else whole)
@@ -1441,6 +1442,50 @@ def _plain(setup: Setup, state0: ModelState, state: ModelState, reduced: ModelSt
             # what was accepted beside the shape may have fitted around it: each choice is
             # needed with the plain form in place, the last one too (y09's current gain)
             return _backward(setup, trial, log, every=True)
+    return None
+
+
+def _tied(setup: Setup, state0: ModelState, state: ModelState, reduced: ModelState,
+          unstable: list[tuple[Choice, Any]], log: dict[str, Any]) -> ModelState | None:
+    """An unstable effect replaced by the alternative its round could not tell from it (a
+    single that passed within the BIC margin of it, ``log['rounds']``): the report says the
+    data cannot choose between the two, so the one the rounding chose must not take the
+    other down with it. EMPS's force reading: a force on the cart and an offset of the
+    reading tie (ΔBIC -909.9 and -909.4); on one machine's BLAS the force won and went as
+    a stand-in (its law bent by the cart's speed), and the offset, whose law holds, was
+    never tried. The alternative must pass ``judge`` against the model without the unstable
+    effects and trade no probe; it is then judged for stability with the rest. Each
+    effect is replaced so once (``log['tied']``), its alternative never back."""
+    done = log.setdefault("tied", set())
+    for choice, _ in unstable:
+        cand = choice.candidate
+        won = log["trials"].get(cand.key)
+        if choice.correction or cand.key in done or won is None:
+            continue
+        done.add(cand.key)
+        alts = [t.candidates[0] for t in log.get("rounds", {}).get(cand.key, [])
+                if len(t.candidates) == 1 and t.delta_bic - won.delta_bic < BIC_MARGIN and
+                t.candidates[0].key not in done]
+        alone = _alone(setup, state0, state, reduced, unstable, choice)
+        if not alts or alone is None:
+            continue
+        other = alts[0]
+        done.add(other.key)
+        i = next(j for j, c in enumerate(state.chosen) if c is choice)
+        starts = {n: spec[0] for n, spec in other.free.items()}
+        (trial,) = _refitted(setup, state, [_replaced(setup, state, i, other, starts)],
+                             "tied alternative")
+        if trial is None:
+            continue
+        judged = judge(setup, alone, Trial((other,), trial.fit))
+        setup.log(f"  in place of {cand.key}: {other.key} (its round's tie): {judged.note}")
+        if judged.passed and not _traded(setup, state0, trial):
+            log["trials"][judged.key] = judged
+            setup.log(f"revised: {judged.key} replaces {cand.key} (the tie of its round)")
+            log["rejected"].append({"effect": cand.effect, "target": cand.target,
+                                    "reason": f"a stand-in: replaced by {judged.key}, which "
+                                              f"its round could not tell from it"})
+            return trial
     return None
 
 
