@@ -1426,19 +1426,11 @@ def _plain(setup: Setup, state0: ModelState, state: ModelState, reduced: ModelSt
         # the shape's own values where fitted, else its starts (a shape held fixed)
         rise, tau = (state.params.get(n, cand.free[n][0]) for n in (size, cand.shape[0]))
         starts[rate] = min(max(rise / tau, lo), hi)
-        i = next(j for j, c in enumerate(state.chosen) if c is choice)
-        (trial,) = _refitted(setup, state, [_replaced(setup, state, i, plain, starts)],
-                             "plain form")
-        if trial is None:
-            continue
-        judged = judge(setup, alone, Trial((plain,), trial.fit))
-        setup.log(f"  in place of {cand.key}: {plain.key}: {judged.note}")
-        if judged.passed and not _traded(setup, state0, trial):
-            log["trials"][judged.key] = judged
-            setup.log(f"revised: {judged.key} replaces {cand.key} (its plain form)")
-            log["rejected"].append({"effect": cand.effect, "target": cand.target,
-                                    "reason": f"its parameters not constants of the record: "
-                                              f"replaced by its plain form {judged.key}"})
+        why = f"its parameters not constants of the record: replaced by its plain form " \
+            f"{plain.key}"
+        trial = _in_place(setup, state0, state, alone, choice, plain, starts, log,
+                          ("its plain form", why))
+        if trial is not None:
             # what was accepted beside the shape may have fitted around it: each choice is
             # needed with the plain form in place, the last one too (y09's current gain)
             return _backward(setup, trial, log, every=True)
@@ -1471,22 +1463,35 @@ def _tied(setup: Setup, state0: ModelState, state: ModelState, reduced: ModelSta
             continue
         other = alts[0]
         done.add(other.key)
-        i = next(j for j, c in enumerate(state.chosen) if c is choice)
         starts = {n: spec[0] for n, spec in other.free.items()}
-        (trial,) = _refitted(setup, state, [_replaced(setup, state, i, other, starts)],
-                             "tied alternative")
-        if trial is None:
-            continue
-        judged = judge(setup, alone, Trial((other,), trial.fit))
-        setup.log(f"  in place of {cand.key}: {other.key} (its round's tie): {judged.note}")
-        if judged.passed and not _traded(setup, state0, trial):
-            log["trials"][judged.key] = judged
-            setup.log(f"revised: {judged.key} replaces {cand.key} (the tie of its round)")
-            log["rejected"].append({"effect": cand.effect, "target": cand.target,
-                                    "reason": f"a stand-in: replaced by {judged.key}, which "
-                                              f"its round could not tell from it"})
+        why = f"a stand-in: replaced by {other.key}, which its round could not tell from it"
+        trial = _in_place(setup, state0, state, alone, choice, other, starts, log,
+                          ("the tie of its round", why))
+        if trial is not None:
             return trial
     return None
+
+
+def _in_place(setup: Setup, state0: ModelState, state: ModelState, alone: ModelState,
+              choice: Choice, other: Any, starts: Mapping[str, float], log: dict[str, Any],
+              words: tuple[str, str]) -> ModelState | None:
+    """``state`` with the unstable ``choice`` replaced by ``other`` from ``starts`` [SI] and
+    refitted, when ``other`` passes ``judge`` against ``alone`` (the model without the
+    unstable effects) and trades no probe; else None. ``words``: what ``other`` is to the
+    choice, and the reason the choice is rejected for."""
+    cand = choice.candidate
+    i = next(j for j, c in enumerate(state.chosen) if c is choice)
+    (trial,) = _refitted(setup, state, [_replaced(setup, state, i, other, starts)], words[0])
+    if trial is None:
+        return None
+    judged = judge(setup, alone, Trial((other,), trial.fit))
+    setup.log(f"  in place of {cand.key}: {other.key} ({words[0]}): {judged.note}")
+    if not judged.passed or _traded(setup, state0, trial):
+        return None
+    log["trials"][judged.key] = judged
+    setup.log(f"revised: {judged.key} replaces {cand.key} ({words[0]})")
+    log["rejected"].append({"effect": cand.effect, "target": cand.target, "reason": words[1]})
+    return trial
 
 
 def _alone(setup: Setup, state0: ModelState, state: ModelState, reduced: ModelState,
