@@ -37,8 +37,8 @@ def add_cli(sub) -> None:
     d.add_argument("--time", default="time", help="name of the time column [s]")
     d.add_argument("--inputs", default="", help="other columns of the CSV that are not "
                    "probes (measured inputs, unused signals), comma-separated")
-    d.add_argument("--max-effects", type=whole(0, hint=" (0: fit the declared model and describe its residual)"),
-                   default=MAX_EFFECTS,
+    d.add_argument("--max-effects", default=MAX_EFFECTS, type=whole(
+                       0, hint=" (0: fit the declared model and describe its residual)"),
                    help=f"largest number of effects to add (default {MAX_EFFECTS})")
     d.add_argument("--set", action="append", metavar="NAME=VALUE",
                    help="override a parameter (units checked); for a declared free one, its "

@@ -206,7 +206,8 @@ def add_cli(subparsers) -> None:
     shared.add(e)
     e.add_argument("--voltage", default="e1", help="phase-to-neutral voltage column [V]")
     e.add_argument("--shift", type=float, default=0.0, help="electrical phase of this phase")
-    e.add_argument("--k-max", type=whole(1, MAX_ORDER), default=9, help="largest K of the J_min curve")
+    e.add_argument("--k-max", type=whole(1, MAX_ORDER), default=9,
+                   help="largest K of the J_min curve")
     e.add_argument("--rel-tol", type=fraction, default=1e-4,
                    help="relevant order: J_min drop above this fraction of the signal energy")
     e.add_argument("--orders", help="fit these orders (default 1..largest relevant)")
@@ -230,7 +231,8 @@ def add_cli(subparsers) -> None:
     c.add_argument("--no-coulomb", action="store_true", help="no C sign(w) term")
     c.add_argument("--raw", action="store_true",
                    help="take the compensator output as the disturbance (Kapun's plain fit)")
-    c.add_argument("--k-max", type=whole(0, MAX_ORDER), default=0, help="print J_min for K = 0..K_MAX")
+    c.add_argument("--k-max", type=whole(0, MAX_ORDER), default=0,
+                   help="print J_min for K = 0..K_MAX")
     c.add_argument("--plot", help="PNG of J_min versus K (with --k-max)")
     c.add_argument("--json", action="store_true", help="print one JSON object")
     c.set_defaults(func=_cmd_cogging)
