@@ -147,7 +147,7 @@ def knee_u(r: float) -> float:
     descends monotonically on the concave atan(u) - r u."""
     import numpy as np
 
-    u = np.pi / 2 * np.sqrt(1 / r**2 - 1)
+    u = np.pi / 2 * np.sqrt(1 / (r * r) - 1)
     for _ in range(KNEE_STEPS):
         u = u - (np.arctan(u) - r * u) / (1 / (1 + u * u) - r)
     return u
@@ -155,7 +155,7 @@ def knee_u(r: float) -> float:
 
 def _knee_text(r: str, atan: str, sqrt: str) -> str:
     """``knee_u`` as one expression of generated code (walrus steps share the iterate)."""
-    steps = [f"(_kr := ({r}))", f"(_ku := 1.5707963267948966*{sqrt}(1/_kr**2 - 1))"]
+    steps = [f"(_kr := ({r}))", f"(_ku := 1.5707963267948966*{sqrt}(1/(_kr*_kr) - 1))"]
     steps += [f"(_ku := _ku - ({atan}(_ku) - _kr*_ku)/(1/(1 + _ku*_ku) - _kr))"] * KNEE_STEPS
     return f"({', '.join(steps)})[-1]"
 
@@ -182,7 +182,10 @@ def _knee_function() -> type:
             return None
 
         def _pythoncode(self, printer, **kw):
-            return _knee_text(printer._print(self.args[0]), "math.atan", "math.sqrt")
+            r = printer._print(self.args[0])
+            if getattr(printer, "calls", False):  # the kernels: numba types no walrus chain
+                return f"knee_u({r}, {KNEE_STEPS})"
+            return _knee_text(r, "math.atan", "math.sqrt")
 
         def _numpycode(self, printer, **kw):
             return _knee_text(printer._print(self.args[0]), "numpy.arctan", "numpy.sqrt")

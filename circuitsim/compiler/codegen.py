@@ -24,9 +24,10 @@ from typing import Any
 
 from circuitsim.solve.kernel_lib import BAND_ABS, BAND_REL, GUARDED, KERNEL_LIB
 
-CODEGEN_VERSION = "29"  # 24-25: the root function (25: with tables); 26: batches with tables;
+CODEGEN_VERSION = "30"  # 24-25: the root function (25: with tables); 26: batches with tables;
 # 27: relations' modes numbered in canonical order; 28: an inert term's function skipped;
-# 29: sums and products inside functions printed directly
+# 29: sums and products inside functions printed directly; 30: the knee of a coil's
+# saturation a call in the kernels (kernel_lib.knee_u)
 
 # [unknowns] from here on the residual's linear part is a sparse matrix product (measured on
 # RLC ladders: 5x slower than the scalar code at 16 unknowns, 2x at 50, equal at 100) ...
@@ -110,6 +111,7 @@ def _printers(names: dict | None = None):
 
     class Kernel(Scalar):
         guard = "call"  # the kernels' guarded calls (kernel_lib.py)
+        calls = True  # a function computed by iteration is kernel_lib's call (knee_u)
 
     options = {"fully_qualified_modules": True, "standard": "python3"}
     vector = Vector({"fully_qualified_modules": True})
@@ -447,7 +449,8 @@ from numba import carray, njit
 
 from {KERNEL_LIB} import (JAC, RES, ROOT, as_pointer, band_data, band_ldim, band_smu,  # noqa: F401
                            data_of, if_atan, if_cos, if_cosh, if_exp, if_sin, if_sinh, if_tanh,
-                           libm_pow, sparse_data, sparse_ptrs, sparse_rows, tab, tab_slope)
+                           knee_u, libm_pow, sparse_data, sparse_ptrs, sparse_rows, tab,
+                           tab_slope)
 
 CFUNCS = {{}}
 '''

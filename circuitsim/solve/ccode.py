@@ -16,7 +16,7 @@ to numba, as before; ``CIRCUITSIM_CC`` names the compiler (``off``: numba only).
 The subset: assignments of names and of array elements (``=``, ``+=``), ``for`` over
 ``range``, ``if``, ``return``, arithmetic (``/`` is Python's true division), comparisons,
 conditional expressions, ``and``/``or``/``not`` of comparisons, the ``math`` functions below,
-``libm_pow`` and the gated functions of ``kernel_lib``, ``max``/``min``/``abs``/``int``/
+``libm_pow``, ``knee_u`` and the gated functions of ``kernel_lib``, ``max``/``min``/``abs``/``int``/
 ``float``, the run-time tables (``tab``, ``tab_slope``), SUNDIALS' vectors and matrices read
 as ``kernel_lib``'s intrinsics read them, and module-level int32 arrays. Types are inferred:
 int64 for integers, double for the rest, pointers for ``carray``.
@@ -85,6 +85,12 @@ static double tab(const double *u, long long h, long long i, double x) {
     if (k < 0) return u[off + m];
     if (k >= m - 1) return u[off + 2 * m - 1];
     return u[off + m + k] + u[off + 2 * m + k] * (x - u[off + k]);
+}
+/* the u > 0 with atan(u) = r u: kernel_lib.knee_u's Newton steps in the same order */
+static double knee_u(double r, long long steps) {
+    double u = 1.5707963267948966 * sqrt(1.0 / (r * r) - 1.0);
+    for (long long k = 0; k < steps; k++) u = u - (atan(u) - r * u) / (1.0 / (1.0 + u * u) - r);
+    return u;
 }
 static double tab_slope(const double *u, long long h, long long i, double x) {
     long long off = (long long)u[h + 2 * i], m = (long long)u[h + 2 * i + 1];
@@ -262,6 +268,8 @@ class _Function:
             return f"((long long)({texts[0]}))", "i"
         if name == "float" and len(args) == 1 and numeric:
             return f"((double)({texts[0]}))", "d"
+        if name == "knee_u" and kinds == ["d", "i"]:
+            return f"knee_u({texts[0]}, {texts[1]})", "d"
         if name in ("tab", "tab_slope") and len(args) == 4 and kinds[0] == "pd":
             return f"{name}({', '.join(texts)})", "d"
         if name in ("data_of", "band_data", "sparse_data", "sparse_rows", "sparse_ptrs") \

@@ -141,6 +141,17 @@ def tab(u, h, i, x):
 
 
 @njit(cache=True, error_model="numpy")
+def knee_u(r, steps):
+    """The u > 0 with atan(u) = r u (components.passive.knee_u: the same Newton steps, in the
+    same order, from the same bound); a call because numba cannot type the walrus chain the
+    Python route writes inline."""
+    u = 1.5707963267948966 * math.sqrt(1 / (r * r) - 1)
+    for _ in range(steps):
+        u = u - (math.atan(u) - r * u) / (1 / (1 + u * u) - r)
+    return u
+
+
+@njit(cache=True, error_model="numpy")
 def tab_slope(u, h, i, x):
     """Table i's slope at x (0 outside its points), as _Table.slope."""
     off, m = int(u[h + 2 * i]), int(u[h + 2 * i + 1])
