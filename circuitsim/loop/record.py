@@ -230,11 +230,25 @@ def _check_header(p: str, header: list[str], probes: Sequence[str] | None,
                             SourceLoc(p, 1))
 
 
+#: [s] a record starting this late (11.6 days) and CLOCK_RATIO times its own length after
+#: t = 0 carries a clock's time stamps, not the model's time (Unix, GPS and LabVIEW time are
+#: 1e9 s and more; a slice of a long run starts at a few of its lengths)
+CLOCK_TIME = 1e6
+CLOCK_RATIO = 1000.0
+
+
 def _record(p: str, header: list[str], arr: np.ndarray, time: str) -> Record:
     t = arr[:, header.index(time)]
     if t[0] < 0:
         raise DataError(f"time starts at {t[0]:g} s (row 2). The model starts from rest at "
                         f"t = 0: shift the time axis so the record starts at 0 or later",
+                        SourceLoc(p, 2))
+    if t[0] >= CLOCK_TIME and t[0] > CLOCK_RATIO * (t[-1] - t[0]):
+        raise DataError(f"time starts at {t[0]:.10g} s (row 2), {t[0] / (t[-1] - t[0]):.3g} "
+                        f"times the record's own length: the model starts from rest at t = 0 "
+                        f"and would be simulated over all of that first. These look like a "
+                        f"clock's time stamps (Unix time?): subtract the first time so the "
+                        f"record starts at 0, and state the netlist's stimuli on that axis",
                         SourceLoc(p, 2))
     step = np.diff(t)
     if np.any(step <= 0):
