@@ -1872,6 +1872,24 @@ def test_an_effect_that_leaves_its_misfit_where_it_acts_is_a_stand_in(monkeypatc
         "stand_ins" not in log
 
 
+def test_table_hint_names_a_measured_input_the_record_runs_past():
+    """A gross misfit on a record that runs past its input table's times (held at the ends:
+    the model's input is constant there) names the table, the component and the share; not
+    for a good fit, nor for a record a sample past the table's end."""
+    from circuitsim.loop.slip import GROSS_MISFIT, table_hints
+
+    t = np.linspace(0.0, 10.0, 1001)
+    tables = [("aprbs.csv:u", "U", 0.0, 5.0)]
+    (hint,) = table_hints(t, 1.49, tables)
+    assert "aprbs.csv:u that drives U (0-5 s)" in hint and "over 50% of the record" in hint
+    assert "149%" in hint and "same unit" in hint
+    assert table_hints(t, 0.9 * GROSS_MISFIT, tables) == []
+    assert table_hints(t, 1.49, [("aprbs.csv:u", "U", 0.0, 9.99)]) == []
+    (late,) = table_hints(t, 1.49, [("aprbs.csv:u", "U", 3.0, 10.0)])  # starts after it
+    assert "over 30% of the record" in late
+    assert table_hints(t, float("nan"), tables) == []
+
+
 def test_clock_hint_only_for_a_gross_misfit_on_a_late_clock():
     """The report asks to check the record's clock only when the final model still misses it
     by at least GROSS_MISFIT of its spread AND the record starts later than its own length;

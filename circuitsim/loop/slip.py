@@ -217,6 +217,42 @@ def clock_hints(t: np.ndarray, error: float, stop: float | None = None) -> list[
     return out
 
 
+#: share of a record past a table's end (or before its start) [-] beyond which a gross
+#: misfit names the table (``table_hints``): a table that ends a sample early is no clue
+PAST_TABLE = 0.05
+
+
+def table_hints(t: np.ndarray, error: float,
+                tables: Sequence[tuple[str, str, float, float]]) -> list[str]:
+    """What to check when the model still misses the record grossly (``GROSS_MISFIT``) and
+    the record runs past a measured input's table, ``tables``: (its label, the component it
+    drives, its first and last time [s]). A table holds its end values outside its times,
+    so over that part of the record the model's input is constant -- a record of another
+    run, or a time column in another unit than the table's."""
+    if not error >= GROSS_MISFIT or t.size < 2:
+        return []
+    t0, t1 = float(t[0]), float(t[-1])
+    length, out = t1 - t0, []
+    for label, comp, x0, x1 in tables:
+        past = max(t1 - max(x1, t0), 0.0) + max(min(x0, t1) - t0, 0.0)
+        if past > PAST_TABLE * length:
+            out.append(f"the model still misses the record by {error:.0%} of its spread, and "
+                       f"the record ({t0:.6g}-{t1:.6g} s) runs past the times of the table "
+                       f"{label} that drives {comp} ({x0:.6g}-{x1:.6g} s): the table holds its "
+                       f"end values outside them, so over {past / length:.0%} of the record "
+                       f"the model's input is constant. Check that the table is this run's "
+                       f"and that both time columns are in the same unit")
+    return out
+
+
+def tables_of(model) -> list[tuple[str, str, float, float]]:
+    """The model's measured inputs for ``table_hints``: (label, component, first and last
+    time [s]) of each table."""
+    net = getattr(model, "netlist", None)
+    return [(tab.label, c.name, float(np.min(tab.x)), float(np.max(tab.x)))
+            for c in getattr(net, "components", ()) for tab in c.tables if len(tab.x)]
+
+
 def stop_of(model) -> float | None:
     """The analysis stop [s] the netlist states, None when it states none (the default 0.1 s
     says nothing of the record the author had in mind)."""
@@ -231,10 +267,12 @@ def stop_of(model) -> float | None:
 def hints(model, record, residuals: Mapping[str, np.ndarray], error: float,
           runs: Mapping[str, np.ndarray] | None = None) -> list[str]:
     """What the user may check before reading a fit or a diagnosis of ``record``: its clock
-    and time unit when the ``model``'s misfit ``error`` is gross (``clock_hints``), and a
+    and time unit when the ``model``'s misfit ``error`` is gross (``clock_hints``), a table
+    of its inputs the record runs past (``table_hints``), and a
     probe the model meets only scaled (``scale_hints``); ``residuals``: record - model,
     ``runs``: the model's run on the record's grid (where known)."""
-    out = [*clock_hints(np.asarray(record.t, float), error, stop_of(model)),
+    t = np.asarray(record.t, float)
+    out = [*clock_hints(t, error, stop_of(model)), *table_hints(t, error, tables_of(model)),
            *scale_hints(record, residuals, list(residuals), model.meta.get("units", {}),
                         runs)]
     return out or gross_hints(record, residuals, error)
