@@ -3,6 +3,7 @@ does its physics away from it (issue #5, catalog)."""
 
 from __future__ import annotations
 
+import copy
 import warnings
 
 import numpy as np
@@ -290,10 +291,18 @@ def test_a_coupling_reads_no_shaft_angle_but_a_ripple_does():
 
 
 def test_an_emf_harmonic_declares_its_order_on_its_shaft_too():
-    """The Kim motor's 8th-order EMF ripple: an EMF harmonic of order 8 on M and a torque of
-    order 8 on its shaft both re-tune it; an inertia is re-tuned, never added."""
+    """An EMF ripple of order 8 whose torque acts (``ripple_torque``, on by default): an
+    EMF harmonic of order 8 on M and a torque of order 8 on its shaft both re-tune it. The
+    Kim motor turns the ripple's torque off: there a torque of order 8 on the shaft is new
+    (fresh53's be07, a cogging of order 8, had been reported as a correction). An inertia
+    is re-tuned, never added."""
     net = cs.load(NETLISTS / "kim2024" / "base.yaml")
     declared = effects.declared_orders(net.raw)
+    assert net.raw.component_entry("M")["ripple_torque"] is False
+    assert declared == {("emf-harmonic", "M"): {8}}
+    raw = copy.deepcopy(net.raw)
+    del raw.component_entry("M")["ripple_torque"]
+    declared = effects.declared_orders(raw)
     assert declared[("emf-harmonic", "M")] == {8} and declared[("cogging", "rotor")] == {8}
     (inertia,) = [c for c in effects.candidates(net) if c.effect == "inertia"]
     assert inertia.retunes and inertia.target == "Jr"

@@ -605,6 +605,12 @@ def _probe_patch(raw: RawNetlist, probe: str, param: str, template: str) -> None
     raw.probes[probe] = (template.format(v=f"{node}.v", x=text), loc)
 
 
+def _ripple_torque(entry: Mapping) -> bool:
+    """Whether a converter's EMF harmonics act on its shaft's torque too (the emf
+    component's ``ripple_torque`` option, a bool the loader checks: on unless turned off)."""
+    return entry.get("ripple_torque", True) is not False
+
+
 def declared_orders(raw: RawNetlist) -> dict[tuple[str, str], set[int]]:
     """Harmonic orders the netlist already declares: (effect, target) -> orders. An
     ``emf-harmonic`` or ``cogging`` candidate of such an order re-tunes a declared term; a
@@ -616,10 +622,13 @@ def declared_orders(raw: RawNetlist) -> dict[tuple[str, str], set[int]]:
             continue
         keys = [("cogging", str(entry.get("shaft")))] if entry.get("type") == "cogging" else \
             [("emf-harmonic", str(entry.get("name")))]
-        if entry.get("type") != "cogging" and entry.get("shaft") is not None:
+        if entry.get("type") != "cogging" and entry.get("shaft") is not None and \
+                _ripple_torque(entry):
             # an EMF harmonic's torque side: a converter whose EMF ripples at order k also
             # pulls its shaft at order k (all of it when the coupling conserves energy), so a
-            # torque of that order on that shaft re-tunes the declared term
+            # torque of that order on that shaft re-tunes the declared term. With the ripple's
+            # torque turned off (Kim & Kim's motor) the netlist declares no torque of that
+            # order: one found on the shaft is new (fresh53's be07, an 8th-order cogging)
             keys.append(("cogging", str(entry["shaft"])))
         for h in harmonics:
             try:

@@ -92,6 +92,11 @@ from circuitsim.solve.route import serial_blas
 SCREEN_TOP = 3  # candidates refitted with full simulation per round
 #: screens past the round's refits tried when one failed by the long-memory test alone
 UNMASK_NEXT = 3
+#: share of the structure the residual holds [-] that one of them, passing, must explain to
+#: be taken though it unmasks nothing: then it is that structure, not a slice of it (fresh51's
+#: bc08: a viscous drag on the lens, screened past the round and explaining 107 %; the cogging
+#: that stood in for fresh53's be14, outside the catalog, explained 46 %)
+UNMASK_ALONE = 0.8
 MAX_COMBINATIONS = 10  # joint swaps tried after an acceptance
 #: Share of the declared model's misfit (explained + structure left) the named effects must
 #: explain to be findings: more than they leave. (Twice what they leave, tried after the
@@ -626,9 +631,11 @@ def _unmasked(setup: Setup, state: ModelState, screens: list[Screen], log: dict[
     coaches' unbalance ranked fifth, and a speed-sensor offset with ΔBIC -81 by the AR filter
     but -7.9 with the memory taken out). The next ``UNMASK_NEXT`` screens are refitted; the
     best that passes is taken -- the model with it returned -- only when, with it in place,
-    a masked candidate passes too: what it removed was the mask. One that passes but unmasks
-    nothing is left as the round leaves it (fresh31's outside record ai12: an unbalance
-    passed after two inertias failed so, and took a third label without unmasking them)."""
+    a masked candidate passes too: what it removed was the mask; or when it explains
+    ``UNMASK_ALONE`` of the structure itself. One that passes but unmasks nothing and
+    explains less is left as the round leaves it (fresh31's outside record ai12: an
+    unbalance passed after two inertias failed so, and took a third label without unmasking
+    them)."""
     masked = [t for t in log.get("round", []) if t.masked and len(t.candidates) == 1]
     if not masked:
         return None
@@ -656,6 +663,10 @@ def _unmasked(setup: Setup, state: ModelState, screens: list[Screen], log: dict[
             setup.log(f"accepted {winner[0].key}, which unmasks {c.key}: error "
                       f"{won.fit.error:.4g}")
             return won
+    if winner[0].share >= UNMASK_ALONE:
+        setup.log(f"accepted {winner[0].key}, which explains {winner[0].share:.0%} of the "
+                  f"structure: error {won.fit.error:.4g}")
+        return won
     # not taken: what the report says of it is that, not a near-equal of anything
     log["trials"], log["rounds"] = trials, rounds
     log.pop("alternatives", None)
@@ -975,7 +986,10 @@ def _neighbour_laws(setup: Setup, state: ModelState, log: dict[str, Any]) -> Mod
             if not again:
                 done.add((taken.chosen[i].candidate.effect, old.target))
             swapped.add(best)
-            state = _backward(setup, taken, log)
+            # every other choice, the last one too: an effect accepted after the one revised
+            # may have fitted around its old law (fresh52's bd09: a breakaway on the ring
+            # beside a Stribeck law on the drum, whose law became a dry friction)
+            state = _backward(setup, taken, log, every=True)
 
 
 def _law_gains(setup: Setup, state: ModelState, i: int, log: dict[str, Any]
@@ -1321,6 +1335,11 @@ def _unstable(setup: Setup, state0: ModelState, state: ModelState, log: dict[str
             _plain(setup, state0, state, reduced, unstable, log) or \
             _tied(setup, state0, state, reduced, unstable, log)
         if shaped is not None:
+            # what was accepted beside the replaced effect may have fitted around it: each
+            # choice must be needed with the revision in place, the last one too (y09's
+            # current gain beside a warm-up's plain form; fresh52's bd07: a series
+            # resistance beside a straight drift, 1.7e-10 ohm once its warm-up replaced it)
+            shaped = _backward(setup, shaped, log, every=True)
             # the model revised is the one later stand-ins are measured against
             state, whole = shaped, (shaped if not found else whole)
             continue
@@ -1431,9 +1450,7 @@ def _plain(setup: Setup, state0: ModelState, state: ModelState, reduced: ModelSt
         trial = _in_place(setup, state0, state, alone, choice, plain, starts, log,
                           ("its plain form", why))
         if trial is not None:
-            # what was accepted beside the shape may have fitted around it: each choice is
-            # needed with the plain form in place, the last one too (y09's current gain)
-            return _backward(setup, trial, log, every=True)
+            return trial  # what fitted around the shape goes in _unstable's backward step
     return None
 
 

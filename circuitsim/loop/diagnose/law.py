@@ -67,8 +67,12 @@ BEND_STEP = 1e-2
 #: offset; its Coulomb friction 0.013, the ODrive's cogging orders 0.05); 0.000-0.003 for
 #: every right law on the synthetic records, once a brush drop's transition width is fitted
 #: (``effects.brush-transition``: with it fixed at 1 mA against a simulator's 5 mA, t03's
-#: viscous friction bent to take 0.36 of that misfit).
-LAW_SHARE = 0.3
+#: viscous friction bent to take 0.36 of that misfit). Set first at 0.3, numerically
+#: ``decide.STRUCTURE_SHARE``; lowered on 2026-12-01 to 0.24, the geometric middle of the
+#: real logs' largest (0.19) and the least a stand-in has taken since (0.297: fresh51's bc13,
+#: a speed output ratiometric to a rail the motor's current pulls, read as a sensor offset
+#: whose bend by the reading's size asks it to vary by 2.2 times itself), with bc13 in hand.
+LAW_SHARE = 0.24
 #: Variation of a circuit's effect over the record that a significant bend may ask for
 #: before the law is wrong, whatever share of the residual it takes: a friction whose
 #: coefficient must move by a tenth of itself about its typical value is no Coulomb friction,
