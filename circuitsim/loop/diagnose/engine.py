@@ -1422,8 +1422,8 @@ def _plain(setup: Setup, state0: ModelState, state: ModelState, reduced: ModelSt
     stand-in, left the plain form untried (fresh16's y09: a warm-up at 6 s won the first
     round beside the inertia, was unstable at the end, and the truth's straight drift was
     never refitted). The plain form must pass ``judge`` against the model without the
-    unstable effects and trade no probe; every choice is then re-tested (``_backward``) and
-    what stays is judged for stability again.
+    unstable effects and trade no probe; ``_unstable`` then re-tests every choice
+    (``_backward``) and judges what stays for stability again.
     Each kind is revised once, either way (``log['shaped']``)."""
     done = log.setdefault("shaped", set())
     for choice, _ in unstable:
