@@ -1652,8 +1652,9 @@ def test_close_calls_are_refitted_and_a_rigid_gears_twin_once():
 
     def screen(effect: str, target: str, share: float):
         cand = SimpleNamespace(effect=effect, target=target, key=f"{effect}:{target}",
-                               fixed={}, shape=None)
-        return SimpleNamespace(proposal=SimpleNamespace(candidate=cand), share=share)
+                               fixed={}, shape=None, free={"x": (0.0, -1.0, 1.0)})
+        return SimpleNamespace(proposal=SimpleNamespace(candidate=cand), share=share,
+                               dim=1000)
 
     b06 = [screen("viscous-friction", "rotor", 0.1440),
            screen("viscous-friction", "pump", 0.1435),
@@ -1714,8 +1715,9 @@ def test_an_inertia_on_a_rigid_gears_two_sides_is_refitted_once():
 
     def screen(effect: str, target: str, share: float):
         cand = SimpleNamespace(effect=effect, target=target, key=f"{effect}:{target}",
-                               fixed={}, shape=None)
-        return SimpleNamespace(proposal=SimpleNamespace(candidate=cand), share=share)
+                               fixed={}, shape=None, free={"x": (0.0, -1.0, 1.0)})
+        return SimpleNamespace(proposal=SimpleNamespace(candidate=cand), share=share,
+                               dim=1000)
 
     az08 = [screen("inertia", "Jr", 0.62), screen("inertia", "Jh", 0.62),
             screen("sensor-gain", "current", 0.55), screen("inertia", "Jl", 0.41),
@@ -1727,6 +1729,64 @@ def test_an_inertia_on_a_rigid_gears_two_sides_is_refitted_once():
     # a component that is no single body (the gear) has no speed of its own: no twin
     gear = [screen("inertia", "G", 0.6), screen("inertia", "Jl", 0.5)]
     assert len(_to_refit(state, gear, 3, {})) == 2
+
+
+def test_the_rounds_strongest_evidence_is_refitted_whatever_its_share():
+    """A round ranks its screens by the share of their own space they explain, and six
+    slow features may give a large share little evidence: fresh53's be06, where three slow
+    screens of 0.93, 0.90 and 0.89 (each promising a BIC fall of about 14) filled the
+    round's places and a current probe's 30 us lag (0.27 of 15 001 samples: 4785) was never
+    refitted. The screen of the largest promise is refitted too, once."""
+    from types import SimpleNamespace
+
+    from circuitsim.loop.diagnose.engine import _to_refit
+    from circuitsim.loop.diagnose.screen import promise
+
+    state = SimpleNamespace(fit=SimpleNamespace(sim={}),
+                            model=SimpleNamespace(netlist=SimpleNamespace(components=[])))
+
+    def screen(effect: str, target: str, share: float, dim: int):
+        cand = SimpleNamespace(effect=effect, target=target, key=f"{effect}:{target}",
+                               fixed={}, shape=None, free={"x": (0.0, -1.0, 1.0)})
+        return SimpleNamespace(proposal=SimpleNamespace(candidate=cand), share=share,
+                               dim=dim)
+
+    be06 = [screen("resistance-drift", "Ra", 0.9290, 6), screen("inertia", "Jr", 0.8872, 6),
+            screen("series-resistance", "Lc1", 0.6906, 6),
+            screen("sensor-delay", "i_total", 0.2736, 15001),
+            screen("cogging", "rotor", 0.0175, 15001)]
+    assert promise(be06[0]) == pytest.approx(-6 * np.log(1 - 0.929) - np.log(6))
+    keys = [s.proposal.candidate.key for s in _to_refit(state, be06, 3, {})]
+    assert keys == ["resistance-drift:Ra", "inertia:Jr", "series-resistance:Lc1",
+                    "sensor-delay:i_total"]
+    # the strongest among the top three already: nothing is added
+    keys = [s.proposal.candidate.key for s in _to_refit(state, be06[3:], 3, {})]
+    assert keys == ["sensor-delay:i_total", "cogging:rotor"]
+
+
+def test_a_screen_explains_only_what_its_parameters_can_within_their_bounds():
+    """The score test's coefficients are bounded as the parameters are: a size whose slope
+    points below its lower bound explains nothing (fresh53's be05: a brush drop, a dry
+    friction and two series resistances, each screened at 0.9 of the slow features by a
+    negative size, took the round's places from a breakaway friction). Against the closed
+    form of a bounded least-squares fit of two columns."""
+    from circuitsim.loop.diagnose.screen import _bounded_lstsq
+
+    rng = np.random.default_rng(3)
+    S = rng.normal(size=(50, 2))
+    e0 = S @ np.array([-0.4, 0.7]) + 0.01 * rng.normal(size=50)
+    free = _bounded_lstsq(S, e0, [(0.0, -1.0, 1.0), (0.0, -1.0, 1.0)], [0.0, 0.0])
+    assert free == pytest.approx(np.linalg.lstsq(S, e0, rcond=None)[0])
+    # the first size bounded at zero (a resistance): at its bound, the second fitted alone
+    got = _bounded_lstsq(S, e0, [(0.0, 0.0, 1e3), (0.0, -1.0, 1.0)], [0.0, 0.0])
+    alone = float(S[:, 1] @ e0) / float(S[:, 1] @ S[:, 1])
+    assert got == pytest.approx([0.0, alone], abs=1e-12)
+    # about a base value: the bound is on base + coefficient
+    got = _bounded_lstsq(S[:, :1], e0, [(0.0, 0.3, 1e3)], [0.5])
+    assert got == pytest.approx([-0.2])
+    # a further column (an accepted effect's re-tuning) is never bounded
+    got = _bounded_lstsq(S, e0, [(0.0, 0.0, 1e3)], [0.0])
+    assert got[0] == 0.0 and got[1] == pytest.approx(alone)
 
 
 def test_a_residual_that_follows_the_models_own_signals_is_no_sensor_noise():

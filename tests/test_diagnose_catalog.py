@@ -252,6 +252,21 @@ def test_stribeck_peak_and_its_speed_through_the_loop():
     assert got["ws"] == pytest.approx(4.0, rel=0.1), d.summary()
 
 
+def test_a_breakaway_on_a_rotor_that_declares_no_dry_friction_through_the_loop():
+    """A rotor that declares a viscous friction alone sticks by 1.5 mN m that fades by
+    4 rad/s (dried-out bushes; fresh53's be05): no dry friction of one level fits it, and
+    the breakaway peak is offered on its own -- found as Stribeck friction on a motor that
+    comes to rest and starts again through its command, its peak and speed recovered.
+    (A record that passes through low speed once, in a start-up of a few milliseconds,
+    fixes the peak's impulse, not its shape: the report says so.)"""
+    rec = make_record("b", [("stribeck-friction", "rotor", None, [1.5e-3, 4.0])], seed=16)
+    d = diagnose(cs.load(MOTORS["b"]["netlist"]), rec)
+    assert [a.effect for a in d.effects] == ["stribeck-friction"], d.summary()
+    got = {k.rsplit("_", 1)[-1]: v for a in d.effects for k, v in a.parameters.items()}
+    assert got["s"] == pytest.approx(1.5e-3, rel=0.1), d.summary()
+    assert got["ws"] == pytest.approx(4.0, rel=0.1), d.summary()
+
+
 def test_kim_declared_ripple_off_is_a_correction_not_a_new_effect():
     """The record's 8th-order ripple is 10 % stronger than declared: the diagnosis re-tunes
     the declared term and names no new cause."""

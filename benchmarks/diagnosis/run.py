@@ -8,7 +8,9 @@ Each record is diagnosed in a fresh child process (``--child ID``) with a wall-c
 its result goes to results/<id>.json (git-ignored) as soon as it is done, so an interrupted
 run resumes where it stopped (``--rerun`` recomputes). A missing record CSV is generated
 first (make_records.py --only ID for motors A-C; make_records_x.py for every later motor X). ``--circuitsim DIR`` puts a circuitsim checkout first on the
-child's path (default: whatever the interpreter imports).
+child's path (default: whatever the interpreter imports); ``--snapshot`` copies this
+checkout's circuitsim and its component package to a temporary folder and puts that first,
+so that an edit made during a long run does not reach it.
 
 The API is looked up as ``circuitsim.diagnose`` (a callable exported at the top level), then
 ``circuitsim.loop.diagnose.diagnose``, then the old ``circuitsim.diagnose.diagnose``; the
@@ -31,6 +33,7 @@ import argparse
 import json
 import math
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -478,6 +481,16 @@ def run_one(entry: dict, timeout: float, circuitsim_dir: str | None, niceness: i
              "wall_s": time.perf_counter() - t0}, indent=1))
 
 
+def snapshot() -> str:
+    """A copy of this checkout's packages, as the install maps them (``components/`` is
+    ``circuitsim_components``), in a new temporary folder: its path, for PYTHONPATH."""
+    dest = Path(tempfile.mkdtemp(prefix="circuitsim-snapshot-"))
+    skip = shutil.ignore_patterns("__pycache__")
+    shutil.copytree(ROOT / "circuitsim", dest / "circuitsim", ignore=skip)
+    shutil.copytree(ROOT / "components", dest / "circuitsim_components", ignore=skip)
+    return str(dest)
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--split", choices=(*SPLITS, "all"), default="tune")
@@ -488,6 +501,10 @@ def main() -> int:
     ap.add_argument("--rerun", action="store_true", help="ignore stored results")
     ap.add_argument("--score-only", action="store_true", help="print from results/ only")
     ap.add_argument("--circuitsim", help="a circuitsim checkout to import (PYTHONPATH)")
+    ap.add_argument("--snapshot", action="store_true",
+                    help="copy this checkout's circuitsim and its component package to a "
+                    "temporary folder first and import that: an edit made while the run "
+                    "goes on does not reach it")
     ap.add_argument("--nice", type=int, default=10, help="niceness of the child (0: none)")
     ap.add_argument("--child", help=argparse.SUPPRESS)
     args = ap.parse_args()
@@ -501,6 +518,11 @@ def main() -> int:
         skip = {x.strip() for x in args.skip.split(",") if x.strip()}
         sel = [e for e in truth if (args.split == "all" or e["split"] == args.split)
                and e["split"] not in skip]
+    if args.snapshot and args.circuitsim:
+        ap.error("--snapshot copies this checkout; --circuitsim names another: choose one")
+    if args.snapshot and not args.score_only:
+        args.circuitsim = snapshot()
+        print(f"importing the snapshot {args.circuitsim}", flush=True)
     if not args.score_only:
         for e in sel:
             path = RESULTS / f"{e['id']}.json"

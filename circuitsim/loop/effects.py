@@ -194,13 +194,6 @@ def _converters(net: Netlist) -> list[tuple[str, str]]:
     return out
 
 
-def _has_friction(net: Netlist, node: str) -> bool:
-    """A Coulomb friction acts on the node already (declared, or accepted before): a
-    breakaway peak refines it."""
-    return any(c.type == "friction" and node in dict(c.ports).values()
-               for c in net.components)
-
-
 def _mechanical_nodes(net: Netlist) -> list[tuple[str, str]]:
     return [(n, d) for n, (d, _) in net.nodes.items()
             if d in ("rotational", "translational") and n != "fixed"]
@@ -326,8 +319,7 @@ def _mechanical(net: Netlist, orders: Mapping[str, list[int]]) -> list[Candidate
                     ((f"{node}.phi" if rot else f"{node}.x", "centred"),
                      (_speed(node, rot), "abs")))))
         if rot:
-            if _has_friction(net, node):
-                out.extend(_stribeck(node))
+            out.extend(_stribeck(node))
             for k in orders.get(node, []):
                 a = _pname("cogging", f"{node}_{k}", "a")
                 b = _pname("cogging", f"{node}_{k}", "b")
@@ -401,7 +393,10 @@ def _drop_law(component: str, value: str) -> Law:
 
 def _stribeck(node: str) -> list[Candidate]:
     """A breakaway peak over the node's Coulomb friction: s exp(-(w/ws)^2) sign(w) [N*m],
-    one candidate per start of the Stribeck speed ws."""
+    one candidate per start of the Stribeck speed ws. Where no dry friction acts (declared
+    or accepted), the peak is the friction's whole dry part: a bearing that sticks at rest
+    and frees with speed (fresh53's be05: dried-out sintered bushes on a rotor that declares
+    a viscous friction alone, which no dry friction of one level fits)."""
     out = []
     for i, w0 in enumerate(STRIBECK_SPEEDS):
         # names of their own: a joint screen carries every start at once

@@ -491,7 +491,16 @@ def _to_refit(state: ModelState, screens: list[Screen], top: int, log: dict[str,
     # linear drift of the truth was never refitted)
     close = [s for s in screens[top:] if s not in head and not s.proposal.candidate.shape
              and s.share >= CLOSE_CALL * best and 1.0 - s.share <= CLOSE_LEFT * (1.0 - best)]
-    return head + close[:MAX_CLOSE_CALLS]
+    out = head + close[:MAX_CLOSE_CALLS]
+    # shares of different spaces rank the round (a speed effect in the slow features beside
+    # a ripple in the waveform), and a large share of six slow features may be worth less
+    # evidence than a small one of the waveform: the screen whose promise is the round's
+    # largest is refitted too (fresh53's be06: a current probe's 30 us lag, promising a BIC
+    # fall of 4785, ranked below three slow-feature screens of 0.9 that promised 14)
+    strongest = max(screens, key=promise, default=None)
+    if strongest is not None and strongest not in out:
+        out.append(strongest)
+    return out
 
 
 def _one_per_rigid_set(state: ModelState, screens: list[Screen], log: dict[str, Any]
@@ -1056,9 +1065,8 @@ def _law_open(state: ModelState, i: int, done: set[tuple[str, str]]) -> bool:
 
 
 def _law_neighbours(state: ModelState, i: int, log: dict[str, Any]) -> list[Any]:
-    """The other ``LAW_KINDS`` on the ``i``-th choice's body in the model without it (a
-    breakaway peak only where a friction is declared or accepted there), each at its first
-    start, and none the model holds already."""
+    """The other ``LAW_KINDS`` on the ``i``-th choice's body in the model without it, each
+    at its first start, and none the model holds already."""
     old = state.chosen[i].candidate
     rest = [c for j, c in enumerate(state.chosen) if j != i]
     held = {(c.candidate.effect, c.candidate.target) for c in rest}

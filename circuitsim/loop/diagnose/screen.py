@@ -22,6 +22,7 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+from scipy.optimize import lsq_linear
 
 from circuitsim.loop.diagnose.context import (
     ModelState,
@@ -362,8 +363,8 @@ def _from_runs(setup: Setup, proposal: Proposal, model, y0, stepped: Mapping[str
     k = S.shape[1]
     if retune is not None:
         S = np.column_stack([S, retune])
-    coef, *_ = np.linalg.lstsq(S, e0, rcond=None)
-    gain = float(e0 @ (S @ coef))
+    coef = _bounded_lstsq(S, e0, [cand.free[n] for n in stepped], [base[n] for n in stepped])
+    gain = norm0 - float(np.sum((e0 - S @ coef) ** 2))
     if retune is not None:
         alone, *_ = np.linalg.lstsq(retune, e0, rcond=None)
         gain -= float(e0 @ (retune @ alone))
@@ -371,6 +372,26 @@ def _from_runs(setup: Setup, proposal: Proposal, model, y0, stepped: Mapping[str
              for n, c in zip(stepped, coef[:k], strict=True)}
     start.update({n: cand.free[n][0] for n in cand.shape})
     return Screen(proposal, gain / norm0, start, None, e0.size)
+
+
+def _bounded_lstsq(S: np.ndarray, e0: np.ndarray, specs: list[tuple[float, float, float]],
+                   base: list[float]) -> np.ndarray:
+    """The least-squares coefficients of ``S``'s columns on ``e0``, the first ``len(specs)``
+    kept within their parameters' physical bounds (``specs``: (null, low, high) [SI], about
+    ``base``); any further columns (the accepted effects' re-tuning) are free. A screen's
+    gain is what the candidate can explain where it can be: a resistance whose slope points
+    below zero explains nothing, however well its negative value would (fresh53's be05: a
+    brush drop, a dry friction and two series resistances, each screened at 0.9 of the slow
+    features by a negative size, were refitted in place of the round's best and found
+    nothing)."""
+    coef, *_ = np.linalg.lstsq(S, e0, rcond=None)
+    lo = np.full(S.shape[1], -np.inf)
+    hi = np.full(S.shape[1], np.inf)
+    for j, ((_, a, b), x) in enumerate(zip(specs, base, strict=True)):
+        lo[j], hi[j] = a - x, b - x
+    if np.all((coef >= lo) & (coef <= hi)):
+        return coef
+    return lsq_linear(S, e0, bounds=(lo, hi), method="bvls").x
 
 
 def _inside(spec: tuple[float, float, float], value: float) -> float:
