@@ -1731,6 +1731,44 @@ def test_an_inertia_on_a_rigid_gears_two_sides_is_refitted_once():
     assert len(_to_refit(state, gear, 3, {})) == 2
 
 
+def test_a_breakaway_on_rigid_twins_is_refitted_once_where_a_dry_friction_acts():
+    """A breakaway peak on a bare rotor and on the spindle it drives through a rigid gear is
+    one circuit: refitted once, and on the spindle, whose declared dry friction it refines,
+    in the place the better-screened rotor's took (fresh11's s05: the truth's peak on the
+    spindle, named on the rotor once a peak was offered there alone). Its twin is named."""
+    from types import SimpleNamespace
+
+    from circuitsim.loop.diagnose.engine import _to_refit
+
+    raw = cs.load(NETLISTS.parent / "benchmarks" / "diagnosis" / "netlists" /
+                  "motor_l_slow.yaml").raw
+    t = np.linspace(0.0, 1.0, 501)
+    w = 100.0 * np.sin(7.0 * t) + 30.0 * t
+    state = SimpleNamespace(raw=raw, fit=SimpleNamespace(sim={"rotor.w": w,
+                                                              "spindle.w": w / 2.5}),
+                            model=SimpleNamespace(netlist=SimpleNamespace(components=[])))
+
+    def screen(effect: str, target: str, share: float, key: str = ""):
+        cand = SimpleNamespace(effect=effect, target=target, key=key or f"{effect}:{target}",
+                               fixed={}, shape=None, free={"x": (0.0, 0.0, 1.0)})
+        return SimpleNamespace(proposal=SimpleNamespace(candidate=cand), share=share,
+                               dim=1000)
+
+    s05 = [screen("stribeck-friction", "rotor", 0.83, "stribeck-friction:rotor:ws=10"),
+           screen("unbalance", "rotor", 0.5),
+           screen("stribeck-friction", "spindle", 0.82, "stribeck-friction:spindle:ws=3"),
+           screen("cogging", "spindle", 0.4)]
+    log: dict = {}
+    keys = [s.proposal.candidate.key for s in _to_refit(state, s05, 3, log)]
+    assert keys == ["stribeck-friction:spindle:ws=3", "unbalance:rotor", "cogging:spindle"]
+    assert log["shaft_twins"] == {"stribeck-friction:spindle:ws=3":
+                                  ["stribeck-friction:rotor:ws=10"]}
+    # a dry friction on neither shaft: the better-screened one stays
+    bare = {**state.__dict__, "raw": cs.load(MOTOR).raw}
+    keys = [s.proposal.candidate.key for s in _to_refit(SimpleNamespace(**bare), s05, 3, {})]
+    assert keys[0] == "stribeck-friction:rotor:ws=10"
+
+
 def test_the_rounds_strongest_evidence_is_refitted_whatever_its_share():
     """A round ranks its screens by the share of their own space they explain, and six
     slow features may give a large share little evidence: fresh53's be06, where three slow

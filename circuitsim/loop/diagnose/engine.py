@@ -473,7 +473,7 @@ CLOSE_LEFT = 2.0
 MAX_CLOSE_CALLS = 4
 #: effects whose torque depends on a shaft's speed alone: on shafts that turn as one (a
 #: rigid gear) the effect on one is the effect on the other, scaled by the ratio
-SPEED_TORQUES = ("viscous-friction", "coulomb-friction", "force-offset")
+SPEED_TORQUES = ("viscous-friction", "coulomb-friction", "force-offset", "stribeck-friction")
 
 
 def _to_refit(state: ModelState, screens: list[Screen], top: int, log: dict[str, Any]
@@ -521,7 +521,35 @@ def _one_per_rigid_set(state: ModelState, screens: list[Screen], log: dict[str, 
             w = None
         return None if w is None else (c.key, c.effect, w)
 
-    return _first_of_twins(screens, signal, _proportional, log.setdefault("shaft_twins", {}))
+    twins = log.setdefault("shaft_twins", {})
+    return _on_dry_friction(state, screens, _first_of_twins(screens, signal, _proportional,
+                                                            twins), twins)
+
+
+def _on_dry_friction(state: ModelState, screens: list[Screen], kept: list[Screen],
+                     twins: dict[str, list[str]]) -> list[Screen]:
+    """``kept`` with a breakaway peak moved, in its place, to a rigid twin's shaft where a
+    dry friction acts (declared or accepted) when its own has none: the two are one circuit,
+    and a peak that refines a friction present is the likelier reading than a friction of
+    its own on the other side of the gear (fresh11's s05: the spindle's breakaway over its
+    declared friction, named on the bare rotor once a peak was offered there alone)."""
+    if not any(s.proposal.candidate.effect == "stribeck-friction" for s in kept):
+        return kept
+    dry = {node for c in build(state.raw).components if c.type == "friction"
+           for node in dict(c.ports).values()}
+    by_key = {s.proposal.candidate.key: s for s in screens}
+    out = []
+    for s in kept:
+        c = s.proposal.candidate
+        alt = next((by_key[k] for k in twins.get(c.key, []) if k in by_key
+                    and by_key[k].proposal.candidate.target in dry), None)
+        if c.effect != "stribeck-friction" or c.target in dry or alt is None:
+            out.append(s)
+            continue
+        key = alt.proposal.candidate.key
+        twins[key] = [c.key, *(k for k in twins.pop(c.key) if k != key)]
+        out.append(alt)
+    return out
 
 
 def _speed(state: ModelState, shaft: str) -> np.ndarray | None:
