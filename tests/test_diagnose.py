@@ -321,6 +321,35 @@ def test_swap_tries_each_set_of_effects_once_and_never_one_effect_twice():
         [("coulomb",)]
 
 
+def test_no_pair_is_refitted_with_the_twin_of_an_accepted_effect():
+    """EMPS (tests/test_emps.py): a force on the cart and an offset of the force reading tie
+    in the round that takes the force. Paired later with a gain of the reading, the offset
+    beside its twin only bought two near-cancelling offsets (-64 N and -67 N) while the gain
+    was credited: a candidate tied with an accepted effect, in either direction, takes part
+    in no pair; a tie with an effect not (or no longer) in the model blocks nothing."""
+    from types import SimpleNamespace
+
+    from circuitsim.loop.diagnose.context import Choice
+    from circuitsim.loop.diagnose.engine import _pair, _tied_with_chosen
+
+    def screen(key: str, effect: str) -> SimpleNamespace:
+        cand = SimpleNamespace(key=key, effect=effect, target="x")
+        return SimpleNamespace(proposal=SimpleNamespace(candidate=cand), start={})
+
+    log = {"ties": {"offset": {"force"}, "force": {"offset"}}}
+    force = Choice(SimpleNamespace(key="force", effect="force-offset", target="cart"))
+    offset = Choice(SimpleNamespace(key="offset", effect="sensor-offset", target="F"))
+    assert _tied_with_chosen(SimpleNamespace(chosen=[force]), log) == {"offset"}
+    assert _tied_with_chosen(SimpleNamespace(chosen=[offset]), log) == {"force"}
+    assert _tied_with_chosen(SimpleNamespace(chosen=[]), log) == set()
+    notes: list[str] = []
+    setup = SimpleNamespace(log=notes.append)
+    pair = [screen("offset", "sensor-offset"), screen("gain", "sensor-gain")]
+    # returns before any netlist is touched (state has none)
+    assert _pair(setup, SimpleNamespace(chosen=[force]), pair, {"offset"}) is None
+    assert notes == ["no pair of offset + gain: offset ties with an accepted effect"]
+
+
 def test_a_trial_beyond_a_physical_limit_is_rejected_with_its_reason():
     """An effect whose parameters together leave their physical range (a warm-up faster
     than copper heats) is no finding however much it gains: rejected, the reason in its

@@ -631,7 +631,7 @@ def _refit_round(setup: Setup, state: ModelState, screens: list[Screen],
     log["round"] = [t for t, _ in trials]
     passed = [t for t in trials if t[0].passed]
     if not passed and len(screens) >= 2:
-        pair = _pair(setup, state, screens[:2])
+        pair = _pair(setup, state, screens[:2], _tied_with_chosen(state, log))
         if pair is not None and pair.passed:
             passed = [(pair, _corrections(screens[:2]))]
             a, b = (c.key for c in pair.candidates)
@@ -653,6 +653,9 @@ def _refit_round(setup: Setup, state: ModelState, screens: list[Screen],
                            abs(t.sse_after - best[0].sse_after) > SAME_FIT * best[0].sse_after]
     for t, _ in trials:
         if t is not best[0] and t.delta_bic - best[0].delta_bic < BIC_MARGIN and t.passed:
+            ties = log.setdefault("ties", {})  # both ways: a later swap may keep either
+            ties.setdefault(t.key, set()).add(best[0].key)
+            ties.setdefault(best[0].key, set()).add(t.key)
             log["indistinct"].append(
                 f"{best[0].key} and {t.key} explain this record almost equally well (ΔBIC "
                 f"{best[0].delta_bic:.1f} vs {t.delta_bic:.1f}): the data cannot tell them "
@@ -750,10 +753,25 @@ def _corrections(screens: list[Screen]) -> frozenset[str]:
     return frozenset(s.proposal.candidate.key for s in screens if s.proposal.correction)
 
 
-def _pair(setup: Setup, state: ModelState, screens: list[Screen]) -> Trial | None:
-    """Two candidates refitted together: one may have been absorbing both effects."""
+def _tied_with_chosen(state: ModelState, log: dict[str, Any]) -> set[str]:
+    """Candidates that fitted as well as an effect now in the model, in the round that chose
+    it (a force on the cart and an offset of the force reading): that effect by another name."""
+    chosen = {c.candidate.key for c in state.chosen}
+    return {k for k, won in log.get("ties", {}).items() if won & chosen}
+
+
+def _pair(setup: Setup, state: ModelState, screens: list[Screen],
+          tied: set[str] = frozenset()) -> Trial | None:
+    """Two candidates refitted together: one may have been absorbing both effects. A
+    candidate tied with an accepted effect takes no part: beside its twin, the two only
+    cancel each other (a force of -64 N on the cart against an offset of -67 N in the reading
+    of the force) while the pair's other member is credited with the gain."""
     a, b = (s.proposal.candidate for s in screens)
     if a.target == b.target and a.effect == b.effect:
+        return None
+    if a.key in tied or b.key in tied:
+        setup.log(f"no pair of {a.key} + {b.key}: "
+                  f"{a.key if a.key in tied else b.key} ties with an accepted effect")
         return None
     raw = b.apply(a.apply(state.raw))
     setup.log(f"refitting the pair {a.key} + {b.key}")
