@@ -350,6 +350,27 @@ def test_no_pair_is_refitted_with_the_twin_of_an_accepted_effect():
     assert notes == ["no pair of offset + gain: offset ties with an accepted effect"]
 
 
+def test_a_law_with_fewer_parameters_replaces_one_whose_extra_parameter_buys_nothing():
+    """fresh52's bd09: a breakaway peak on the drum whose Stribeck speed ended at 880 rad/s
+    (the drum turns at a few) is the dry friction itself. A dry friction at its place that
+    lowers the BIC at all, with one parameter fewer, replaces it; one that raises it, or a
+    law with as many parameters short of the margin, does not."""
+    from types import SimpleNamespace
+
+    from circuitsim.loop.diagnose.engine import _simpler
+
+    def model(*free: str) -> SimpleNamespace:
+        return SimpleNamespace(free=list(free))
+
+    peak = model("R", "s", "ws")
+    gains = {"coulomb": (-7.9, model("R", "c")), "viscous": (-4.0, model("R", "b"))}
+    assert _simpler(peak, gains) == "coulomb"  # the larger fall of the simpler laws
+    assert _simpler(peak, {"coulomb": (3.0, model("R", "c"))}) is None
+    dry = model("R", "c")
+    assert _simpler(dry, {"viscous": (-9.0, model("R", "b"))}) is None
+    assert _simpler(peak, {}) is None
+
+
 def test_a_trial_beyond_a_physical_limit_is_rejected_with_its_reason():
     """An effect whose parameters together leave their physical range (a warm-up faster
     than copper heats) is no finding however much it gains: rejected, the reason in its

@@ -1014,8 +1014,9 @@ def _neighbour_laws(setup: Setup, state: ModelState, log: dict[str, Any]) -> Mod
     it (the best such), and the backward step then re-tests the others; the law swapped in
     is itself revised once more in the model the backward step leaves (fresh46's ax08: the
     rotor's laws compared while a dry friction on the hub, dropped after, still carried the
-    torque, and all of them tied). A law within the margin of the one kept is reported as
-    indistinct."""
+    torque, and all of them tied). Short of that margin, a law with fewer parameters that
+    lowers the BIC at all replaces it (``_simpler``). A law within the margin of the one kept
+    is reported as indistinct."""
     done: set[tuple[str, str]] = set()
     swapped: set[str] = set()
     moved: set[str] = set()  # bodies whose torque changed law once
@@ -1027,8 +1028,11 @@ def _neighbour_laws(setup: Setup, state: ModelState, log: dict[str, Any]) -> Mod
         done.add((old.effect, old.target))
         gains = _law_gains(setup, state, i, log)
         best = min(gains, key=lambda k: gains[k][0], default=None)
-        taken = None if best is None or gains[best][0] >= -BIC_MARGIN else _take_order(
-            setup, state, i, gains[best][1], log, "another law at its place,")
+        what = "another law at its place,"
+        if best is not None and gains[best][0] >= -BIC_MARGIN:
+            best, what = _simpler(state, gains), "a law with fewer parameters at its place,"
+        taken = None if best is None else _take_order(setup, state, i, gains[best][1], log,
+                                                      what)
         again = taken is not None and old.target not in moved
         if not again:  # the ties of the law the model keeps at this place
             kept = state if taken is None else gains[best][1]
@@ -1045,6 +1049,18 @@ def _neighbour_laws(setup: Setup, state: ModelState, log: dict[str, Any]) -> Mod
             # may have fitted around its old law (fresh52's bd09: a breakaway on the ring
             # beside a Stribeck law on the drum, whose law became a dry friction)
             state = _backward(setup, taken, log, every=True)
+
+
+def _simpler(state: ModelState, gains: Mapping[str, tuple[float, ModelState]]) -> str | None:
+    """The law of ``gains`` with fewer parameters than the one in ``state`` that lowers the
+    BIC at all (through both noise filters): the kept law's extra parameters do not earn their
+    own cost, and the simpler law is the reading (fresh52's bd09: a breakaway peak on the drum
+    whose Stribeck speed ended at 880 rad/s, on a drum that turns at a few, is the dry
+    friction the record holds, its Stribeck speed a parameter the data does not fix). None
+    when there is none."""
+    simpler = [k for k, (gain, trial) in gains.items()
+               if gain < 0.0 and len(trial.free) < len(state.free)]
+    return min(simpler, key=lambda k: gains[k][0], default=None)
 
 
 def _law_gains(setup: Setup, state: ModelState, i: int, log: dict[str, Any]
