@@ -889,6 +889,61 @@ def test_a_law_whose_effect_must_change_by_a_fair_part_of_itself_is_bent(phi):
     assert spread_of((1.0,), ()) == 0.0
 
 
+def _offset_case(io: float, seed: int, phi: float = 0.0):
+    """A current reading [A] over 16 s at 100 Hz (steps and ramps between -20 and 20 A) whose
+    sensor adds io h, h following the recent square of the current (dh/dt = ((i/20)^2 - h)/tau,
+    tau 1 s: a shunt's thermoelectric offset) on top of a constant 0.1 A, read through unit
+    noise (AR(1) with ``phi``), fitted as a constant offset: the residual is the noise plus
+    what a constant leaves of io h. Returns the LawTest of the offset's law
+    (law._probe_bend, law.law_test) and the true variation of the offset over its fit."""
+    from types import SimpleNamespace
+
+    from scipy.signal import lfilter
+
+    from circuitsim.loop.diagnose.law import _probe_bend, law_test
+
+    n, dt, tau = 1600, 0.01, 1.0
+    t = np.arange(n) * dt
+    i = np.interp(t, [0, 2, 3, 6, 7, 9, 10, 13, 14, 16], [0, 0, 20, 20, 5, 5, -18, -18, 0, 0])
+    a = dt / tau
+    h = lfilter([a], [1.0, a - 1.0], (i / 20.0) ** 2)
+    reading = 0.1 + io * h
+    fitted = float(np.mean(reading))
+    noise = lfilter_ar1(np.random.default_rng(seed).normal(size=n), phi)
+    weights = {"current": 0.04}  # the noise [A]
+    residual = {"current": reading - fitted + weights["current"] * noise}
+    setup = SimpleNamespace(probes=("current",), weights=weights,
+                            record=SimpleNamespace(t=t))
+    state = SimpleNamespace(fit=SimpleNamespace(sim={"current": i}, residuals=residual))
+    law = SimpleNamespace(place=("probe", "current"), value="offset")
+    bend = _probe_bend(setup, state, law, [fitted])
+    test = law_test(setup, state, [{"current": np.ones(n)}], bend)
+    variation = io * h
+    true = float(np.percentile(np.abs(variation - np.median(variation)), 95)) / fitted
+    return test, true
+
+
+@pytest.mark.parametrize("phi", [0.0, 0.8])
+def test_an_offset_that_follows_the_reading_is_no_sensor_offset(phi):
+    """law.OFFSET_RANGE: a constant offset of 0.1 A plus a thermoelectric offset of up to
+    0.06 A that follows the recent square of the current (three fifths of the constant), read
+    through 40 mA of noise, is fitted by the catalog's constant offset; its law's bend (time and the
+    reading's size) passes the BIC margin, takes under LAW_SHARE of what is left, and asks
+    the offset to vary by a fair part of itself -- within a factor 2 of the true variation -- past OFFSET_RANGE, so the law is
+    bent, with words that say so. A constant offset (io = 0) leaves only noise: over 20
+    seeds of white and of AR(1) noise the bend never passes the margin, so it is never
+    bent."""
+    from circuitsim.loop.diagnose.law import LAW_SHARE, OFFSET_RANGE
+
+    wrong, true = _offset_case(0.06, seed=3, phi=phi)
+    assert wrong.significant and wrong.offset and wrong.removed < LAW_SHARE
+    assert true / 2 < wrong.spread < 2 * true and wrong.spread > OFFSET_RANGE
+    assert wrong.bent and "the offset must vary by" in wrong.why()
+    for seed in range(20):
+        right, _ = _offset_case(0.0, seed=seed, phi=phi)
+        assert not right.significant and not right.bent, (seed, right)
+
+
 def test_an_effect_whose_parameters_are_not_constants_is_a_stand_in(monkeypatch):
     """Stage 5c (engine._unstable): an effect whose per-quarter values gain a quarter of what
     it explains, past the BIC margin, is kept out and reported; one that gains less (or not
