@@ -1,0 +1,143 @@
+"""Cross-check of motor BE on the records' own times: the noise-free output of simulators_be.py
+against circuitsim's simulation of the declared netlists (motor_be_fast.yaml,
+motor_be_slow.yaml) with NO effect: first at the netlists' DECLARED values (on the nominal grid
+of each regime, and on the times of bh07 (even) and bh02 (jittered) in the fast regime and of
+bh01 (even) and bh05 (a logger's uneven times) in the slow one), then on every record's times
+at the record's TRUE values (the declared parameters it frees set to their true values through
+circuitsim's parameter overrides, ``params``). The records' effects are not run through
+circuitsim here (this blind set keeps circuitsim to the null models).
+
+Both netlists must declare the same motor: their parameters and all components but the
+source are compared first. The set's generator and simulator must not touch circuitsim: their
+sources (make_records_be.py, simulators_be.py and the recordkit.py they share) are read first
+and any import of circuitsim in them fails the check; and at the end no module of the
+diagnosis's package (``circuitsim.loop``) may have been imported by anything run here.
+
+    python benchmarks/diagnosis/validate_be.py              # every record
+    python benchmarks/diagnosis/validate_be.py bh04,bh14    # some
+
+Prints, per probe, the largest difference relative to the signal's range at the record's
+sample times. Target 1e-7 of the range; exit status 1 above it. Nothing here runs a
+diagnosis.
+"""
+
+from __future__ import annotations
+
+import ast
+import os
+import sys
+import tempfile
+import warnings
+from pathlib import Path
+from types import SimpleNamespace
+from typing import Any
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))
+
+import crosscheck
+import simulators_be as sy
+from make_records_be import record_specs, scale_marginal, times
+
+NETLISTS = {"fast": HERE / "netlists" / "motor_be_fast.yaml",
+            "slow": HERE / "netlists" / "motor_be_slow.yaml"}
+SOURCES = {"fast": "Vin", "slow": "U"}
+TARGET = 1e-7
+NULL_ON = ("bh01", "bh02", "bh05", "bh07")
+#: the set's own code, which must not import circuitsim (nor its diagnosis, circuitsim.loop)
+OWN_CODE = ("make_records_be.py", "simulators_be.py", "recordkit.py")
+
+
+def circuitsim_imports(path: Path) -> list[str]:
+    """The modules of circuitsim that the Python source ``path`` imports (any line of it,
+    at any depth)."""
+    found = []
+    for node in ast.walk(ast.parse(path.read_text(), str(path))):
+        if isinstance(node, ast.Import):
+            names = [a.name for a in node.names]
+        elif isinstance(node, ast.ImportFrom):
+            names = [node.module or ""]
+        else:
+            continue
+        found += [n for n in names if n == "circuitsim" or n.startswith("circuitsim.")]
+    return found
+
+
+def own_code_clean() -> bool:
+    """Whether the generator, the simulator and recordkit import nothing of circuitsim."""
+    clean = True
+    for name in OWN_CODE:
+        bad = circuitsim_imports(HERE / name)
+        loop = [m for m in bad if m.startswith("circuitsim.loop")]
+        print(f"{name}: imports of circuitsim: {bad or 'none'}"
+              + (f" (the diagnosis's package: {loop})" if loop else ""))
+        clean = clean and not bad
+    return clean
+
+
+def compare(cs: Any, s: dict, label: str, fx: dict,
+            values: dict[str, float] | None = None) -> float:
+    """Motor BE's scipy model against circuitsim at the record's own times (``values``:
+    circuitsim's parameter overrides)."""
+    sim = SimpleNamespace(grid=lambda regime: times(s), simulate=sy.simulate,
+                          PROBES=sy.PROBES)
+    return crosscheck.compare(cs, sim, "BE", sy.MOTOR_BE, NETLISTS, s["regime"], label, fx,
+                              None, values)
+
+
+def check(cs: Any, s: dict) -> float:
+    """One record's comparisons: the declared null on its times (NULL_ON) and the true null
+    (the overrides), both without any effect."""
+    worst = 0.0
+    kind = s["timestamps"].split(":")[0]
+    if s["id"] in NULL_ON:
+        worst = compare(cs, s, f"declared null on {s['id']}'s {kind} times", {})
+    return max(worst, compare(cs, s, f"true null of {s['id']} ({kind} times)",
+                              {"p": dict(s["ptrue"])}, dict(s["ptrue"])))
+
+
+def same_motor(cs: Any) -> bool:
+    """Whether the two netlists declare the same parameters and components (but for the
+    source)."""
+    nets = {r: cs.load(path).raw for r, path in NETLISTS.items()}
+
+    def motor(r: str) -> tuple:
+        raw = nets[r]
+        comps = [dict(c[0]) for c in raw.comps if str(c[0]["name"]) != SOURCES[r]]
+        return repr({k: v for k, (v, _) in raw.params.items()}), repr(comps)
+
+    same = motor("fast") == motor("slow")
+    print(f"motor BE: the fast and slow netlists declare the same motor: {same}")
+    return same
+
+
+def main() -> int:
+    """Every record of fresh56; exit status 1 above TARGET (or if the netlists differ, or if
+    the set's code imports circuitsim, or if circuitsim.loop was imported)."""
+    clean = own_code_clean()
+    os.environ.setdefault("CIRCUITSIM_CACHE", tempfile.mkdtemp(prefix="diagbench-cache-"))
+    warnings.simplefilter("ignore")
+    import circuitsim as cs
+
+    same = same_motor(cs)
+    grid = SimpleNamespace(grid=sy.grid, simulate=sy.simulate, PROBES=sy.PROBES)
+    worst = max(crosscheck.compare(cs, grid, "BE", sy.MOTOR_BE, NETLISTS, r,
+                                   "declared null, nominal grid", {})
+                for r in ("fast", "slow"))
+    status = crosscheck.check_records(cs, record_specs(), times, scale_marginal, check,
+                                      TARGET, sys.argv[1:2])
+    if worst >= TARGET:
+        status = 1
+    loaded = sorted(m for m in sys.modules if m.startswith("circuitsim.loop"))
+    if loaded:
+        print(f"the diagnosis's package was imported ({', '.join(loaded)}): the check is void")
+        return 1
+    print("circuitsim.loop: not imported")
+    if not clean:
+        print("the set's generator or simulator imports circuitsim: the check is void")
+        return 1
+    return status if same else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
