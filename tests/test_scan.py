@@ -209,6 +209,45 @@ def test_the_linearised_scan_is_trusted_only_where_its_best_orders_hold():
     quiet = np.where(np.isfinite(approx), 5.0, -np.inf)
     assert scan._check(quiet, quiet * -3.0, top, m) == "agrees"
 
+def test_a_scan_that_singles_out_no_order_is_scored_exactly():
+    """scan._contenders counts the local maxima above the margin that promise CONTENDER of
+    the best; where there are more of them than the scan may propose (a rotor starting from
+    rest: every order's ripple is first a torque growing with the angle), ``checked`` scores
+    every order exactly even though its best three hold, and the exact best is proposed.
+    A scan with one clear peak keeps its own promises and is checked on its best orders
+    only."""
+    m = BIC_MARGIN
+    k = np.arange(1, 65)
+    flat = 250.0 + 30.0 * np.cos(2.1 * k)  # many local maxima, all within 0.75 of the best
+    assert scan._contenders(flat, m) > scan.MAX_PER_SITE
+    sharp = np.where(k == 20, 300.0, 40.0 + 20.0 * np.cos(2.1 * k))
+    assert scan._contenders(sharp, m) == 1
+    assert scan._contenders(np.full(64, m / 2), m) == 0
+    truth = flat * 0.9
+    truth[19] = 400.0  # order 20, exactly
+
+    class Exact(scan._Exact):
+        def __init__(self, truth):
+            self.truth, self.asked = truth, []
+            self.setup = type("S", (), {"log": lambda self, text: None})()
+
+        def promises(self, site, orders, kmax):
+            self.asked.append(list(orders))
+            out = np.full(kmax, -np.inf)
+            out[np.asarray(orders) - 1] = self.truth[np.asarray(orders) - 1]
+            return out
+
+    site = scan.Site("torque", "rotor", "rotor")
+    ex = Exact(truth)
+    full = ex.checked(site, m, flat)
+    assert len(ex.asked) == 2 and len(ex.asked[1]) == 64
+    assert scan._peaks(full, m, set())[0] == 20
+    ex = Exact(sharp * 1.2)  # the exact promises within 2 times, in the same order
+    kept = ex.checked(site, m, sharp)
+    assert len(ex.asked) == 1 and len(ex.asked[0]) == scan.CHECKED
+    assert scan._peaks(kept, m, set())[0] == 20
+
+
 @pytest.mark.parametrize(("tau_c", "start"), [(0.0, 0), (1e-2, 0), (0.0, 100)])
 def test_the_scan_ranks_the_true_order_first_on_a_reversing_rotor(nets, tau_c, start):
     """A cogging of order 7 at about 20 sigma on a rotor that reverses -- on viscous
