@@ -6,6 +6,7 @@ its own, written independently; only this plumbing is shared."""
 
 from __future__ import annotations
 
+import ast
 import time
 from collections.abc import Mapping, Sequence
 from pathlib import Path
@@ -16,6 +17,34 @@ import numpy as np
 UNITS = {"current": "A", "speed": "rad/s", "load_speed": "rad/s"}
 #: the truth's physical names -> the catalog's parameter suffixes
 SUFFIX = {"gain": "g", "offset": "o", "delay": "tau"}
+
+
+def circuitsim_imports(path: Path) -> list[str]:
+    """The modules of circuitsim that the Python source ``path`` imports (any line of it,
+    at any depth)."""
+    found = []
+    for node in ast.walk(ast.parse(path.read_text(), str(path))):
+        if isinstance(node, ast.Import):
+            names = [a.name for a in node.names]
+        elif isinstance(node, ast.ImportFrom):
+            names = [node.module or ""]
+        else:
+            continue
+        found += [n for n in names if n == "circuitsim" or n.startswith("circuitsim.")]
+    return found
+
+
+def own_code_clean(folder: Path, names: Sequence[str]) -> bool:
+    """Whether the blind set's own code (``names`` in ``folder``: its generator, its
+    simulator, recordkit) imports nothing of circuitsim; prints each file's imports."""
+    clean = True
+    for name in names:
+        bad = circuitsim_imports(folder / name)
+        loop = [m for m in bad if m.startswith("circuitsim.loop")]
+        print(f"{name}: imports of circuitsim: {bad or 'none'}"
+              + (f" (the diagnosis's package: {loop})" if loop else ""))
+        clean = clean and not bad
+    return clean
 
 
 def truth_patch(net: Any, effects: list[dict], probes: Sequence[str], duration: float

@@ -23,7 +23,6 @@ diagnosis.
 
 from __future__ import annotations
 
-import ast
 import os
 import sys
 import tempfile
@@ -46,33 +45,6 @@ TARGET = 1e-7
 NULL_ON = ("bc01", "bc05", "bc07", "bc08")
 #: the set's own code, which must not import circuitsim (nor its diagnosis, circuitsim.loop)
 OWN_CODE = ("make_records_az.py", "simulators_az.py", "recordkit.py")
-
-
-def circuitsim_imports(path: Path) -> list[str]:
-    """The modules of circuitsim that the Python source ``path`` imports (any line of it,
-    at any depth)."""
-    found = []
-    for node in ast.walk(ast.parse(path.read_text(), str(path))):
-        if isinstance(node, ast.Import):
-            names = [a.name for a in node.names]
-        elif isinstance(node, ast.ImportFrom):
-            names = [node.module or ""]
-        else:
-            continue
-        found += [n for n in names if n == "circuitsim" or n.startswith("circuitsim.")]
-    return found
-
-
-def own_code_clean() -> bool:
-    """Whether the generator, the simulator and recordkit import nothing of circuitsim."""
-    clean = True
-    for name in OWN_CODE:
-        bad = circuitsim_imports(HERE / name)
-        loop = [m for m in bad if m.startswith("circuitsim.loop")]
-        print(f"{name}: imports of circuitsim: {bad or 'none'}"
-              + (f" (the diagnosis's package: {loop})" if loop else ""))
-        clean = clean and not bad
-    return clean
 
 
 def compare(cs: Any, s: dict, label: str, fx: dict,
@@ -114,7 +86,7 @@ def same_motor(cs: Any) -> bool:
 def main() -> int:
     """Every record of fresh51; exit status 1 above TARGET (or if the netlists differ, or if
     the set's code imports circuitsim, or if circuitsim.loop was imported)."""
-    clean = own_code_clean()
+    clean = crosscheck.own_code_clean(HERE, OWN_CODE)
     os.environ.setdefault("CIRCUITSIM_CACHE", tempfile.mkdtemp(prefix="diagbench-cache-"))
     warnings.simplefilter("ignore")
     import circuitsim as cs
