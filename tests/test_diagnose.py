@@ -969,6 +969,8 @@ def test_an_effect_whose_parameters_are_not_constants_is_a_stand_in(monkeypatch)
         return ModelState(None, None, [], {}, None, {}, keep)
 
     monkeypatch.setattr(engine, "_without", without)
+    # what stayed beside the stand-in is judged again by its own round's test (own test)
+    monkeypatch.setattr(engine, "_beside_stand_ins", lambda setup, st, log, found: st)
     # what stays explains the structure alone (the named-share rule it is judged by again
     # has its own test)
     monkeypatch.setattr(engine, "explained_and_left",
@@ -2078,6 +2080,8 @@ def test_what_stays_beside_a_rejected_stand_in_must_explain_half_the_structure_a
     monkeypatch.setattr(eng, "_unstable_effects", lambda setup, state, log: next(flagged))
     monkeypatch.setattr(eng, "_without", lambda setup, state, keep:
                         alone if keep == [gain] else state0)
+    # it passes its own round's test again without the stand-in (``_beside_stand_ins``)
+    monkeypatch.setattr(eng, "_beside_stand_ins", lambda setup, st, log, found: st)
     # explains 40 %, leaves 60 % -- of the misfit the model with the stand-in measured
     shares = {("gain alone", "both"): (40.0, 60.0)}
     monkeypatch.setattr(eng, "explained_and_left", lambda setup, before, after, whole=None:
@@ -2097,6 +2101,66 @@ def test_what_stays_beside_a_rejected_stand_in_must_explain_half_the_structure_a
     log = {"rejected": [], "trials": {}}
     assert eng._unstable(setup, state0, both, log) is alone
     assert "without it" not in log["stand_ins"]
+
+
+def test_what_was_accepted_beside_a_withdrawn_stand_in_must_pass_its_round_again(
+        monkeypatch):
+    """``_beside_stand_ins``: once a stand-in is withdrawn, each new effect accepted beside
+    it is judged again as the last one in, by the full acceptance rule (``Trial.passed``).
+    One that is still significant but removes only a sliver of a residual far above the
+    noise goes (fresh6's k12: a speed sensor's delay beside a current sensor's delay taken
+    out as a stand-in); the rest are then judged again without it; a correction and a
+    member of a pair are not judged here (the pair's partner rule is ``_orphans``)."""
+    from types import SimpleNamespace
+
+    import circuitsim.loop.diagnose.engine as eng
+    from circuitsim.loop.diagnose.context import Choice
+    from circuitsim.loop.diagnose.decide import Trial
+
+    def choice(key, correction=False):
+        return Choice(SimpleNamespace(effect=key, target="x", key=key, free={}), correction)
+
+    resistance, delay, paired, fix = (choice("resistance"), choice("delay"),
+                                      choice("paired"), choice("inertia", True))
+    stand_in = choice("stand-in")
+
+    def state(*chosen):
+        return SimpleNamespace(chosen=list(chosen), fit=SimpleNamespace(name=chosen))
+
+    asked: list[list[str]] = []
+
+    def withouts(setup, st, keeps):
+        asked.append(sorted(c.candidate.key for keep in keeps for c in st.chosen
+                            if c not in keep))
+        return [state(*keep) for keep in keeps]
+
+    def judge(setup, reduced, trial):
+        gone = trial.candidates[0].key
+        # with 2000 noise variances left of 2100 before, the delay removes 1 %
+        before, after = (2100.0, 2079.0) if gone == "delay" else (2100.0, 100.0)
+        return Trial(trial.candidates, trial.fit, delta_bic=-400.0, memory_bic=-400.0,
+                     share=0.9, sse_before=before, sse_after=after, floor=100.0,
+                     note=f"note on {gone}")
+
+    monkeypatch.setattr(eng, "_withouts", withouts)
+    monkeypatch.setattr(eng, "judge", judge)
+    said: list[str] = []
+    setup = SimpleNamespace(log=said.append)
+    log = {"rejected": [], "pairs": {"paired": "elsewhere"}}
+    out = eng._beside_stand_ins(setup, state(resistance, delay, paired, fix), log,
+                                [(stand_in, None)])
+    assert [c.candidate.key for c in out.chosen] == ["resistance", "paired", "inertia"]
+    # first both new effects are judged, then, the delay gone, the resistance again
+    assert asked == [["delay", "resistance"], ["resistance"]]
+    assert [r["effect"] for r in log["rejected"]] == ["delay"]
+    assert "stand-in" in log["rejected"][0]["reason"] and \
+        "note on delay" in log["rejected"][0]["reason"]
+    assert any(line.startswith("dropped delay") for line in said)
+    # nothing new beside the stand-in: the model is returned as it is, nothing refitted
+    asked.clear()
+    lone = state(fix)
+    assert eng._beside_stand_ins(setup, lone, {"rejected": []}, [(stand_in, None)]) is lone
+    assert not asked
 
 
 def test_a_misfit_left_where_the_effect_acts_is_found_and_one_elsewhere_is_not():
@@ -2156,6 +2220,8 @@ def test_an_effect_that_leaves_its_misfit_where_it_acts_is_a_stand_in(monkeypatc
                         lambda setup, before, after, whole=None: (1.0, 0.0))
     structure = {"structure": True, "probes": {"speed": {}}}
     monkeypatch.setattr(engine, "remaining", lambda setup, state, stand_in=False: structure)
+    # the offset passes its round's test again without the delay (``_beside_stand_ins``)
+    monkeypatch.setattr(engine, "_beside_stand_ins", lambda setup, st, log, found: st)
     setup = SimpleNamespace(log=lambda s: None)
     state = ModelState(None, None, [], {}, None, {}, [Choice(delay), Choice(offset)])
     log = {"rejected": []}

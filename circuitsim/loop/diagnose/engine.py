@@ -23,6 +23,8 @@ The stages, each a function of plain objects (``context``):
    is a stand-in too; so is one whose values differ between bands of the record's spectrum,
    and one whose law, let bend over the record's operating range, removes a fair share of
    what the final model leaves (``law``: a viscous friction standing in for an iron loss).
+   Whatever was accepted beside a stand-in must pass its round's test again without it
+   (``_beside_stand_ins``).
 6. ``describe.remaining`` -- what structure is left, in plain terms, never a catalog label.
 7. ``Diagnosis`` (``result``) -- the report: error before and after, effects, corrections,
    what could not be told apart, what was rejected and why, what remains.
@@ -1423,10 +1425,52 @@ def _unstable(setup: Setup, state0: ModelState, state: ModelState, log: dict[str
         state = _orphans(setup, reduced, log)
     if not found:
         return state
+    state = _beside_stand_ins(setup, state, log, found)
     return _rejected_as_stand_ins(
         setup, state0, state, whole, log, found,
         "a physical effect's parameters are constants of the record and its law holds over "
         "the whole of it, so this fits a cause outside the catalog only approximately")
+
+
+def _beside_stand_ins(setup: Setup, state: ModelState, log: dict[str, Any],
+                      found: list[tuple[Choice, Any]]) -> ModelState:
+    """The new effects accepted beside the stand-ins ``found``, each judged again as the last
+    one in with the rest of the model in place and the stand-ins gone: a round accepted it
+    for what it explained with a stand-in fitting part of the record, and it stays only
+    when it would pass that round's test now (significant by both noise filters, inside
+    its range, a share of the structure the residual holds). The weakest that fails goes
+    first, and the rest are judged again without it. fresh28's af13 (a seat heater on a
+    shared harness, outside the catalog): a series resistance taken first, then a force
+    offset and a current sensor's gain beside it; the resistance went as a stand-in, and
+    the two stayed on a test passed in its presence. Members of a pair are ``_orphans``'."""
+    names = ", ".join(c.candidate.key for c, _ in found)
+    pairs = log.get("pairs", {})
+    while True:
+        judged = [c for c in state.chosen if not c.correction and c.candidate.key not in pairs]
+        if not judged:
+            return state
+        reductions = _withouts(setup, state, [[c for c in state.chosen if c is not x]
+                                              for x in judged])
+        failed = []
+        for choice, reduced in zip(judged, reductions, strict=True):
+            if reduced is None:
+                continue
+            gone = [c.candidate for c in state.chosen if c not in reduced.chosen]
+            verdict = judge(setup, reduced, Trial(tuple(gone), state.fit))
+            setup.log(f"  {choice.candidate.key} without {names}: {verdict.note}")
+            if not verdict.passed:
+                failed.append((verdict.delta_bic, choice, reduced, gone, verdict))
+        if not failed:
+            return state
+        _, choice, state, gone, verdict = max(failed, key=lambda f: f[0])
+        setup.log(f"dropped {choice.candidate.key}: accepted beside {names}, which went as "
+                  f"stand-ins; without them {verdict.note}")
+        for c in gone:
+            log["rejected"].append({
+                "effect": c.effect, "target": c.target, "delta_bic": verdict.delta_bic,
+                "structure_share": verdict.share,
+                "reason": f"accepted beside {names}, taken out as stand-ins; judged again "
+                          f"without them: {verdict.note}"})
 
 
 #: effects with a plain form and shaped forms that contain it: effect -> the ends of the
@@ -1756,6 +1800,7 @@ def _where(setup: Setup, state0: ModelState, state: ModelState, log: dict[str, A
         state = reduced
     if not found:
         return state
+    state = _beside_stand_ins(setup, state, log, found)
     return _rejected_as_stand_ins(
         setup, state0, state, whole, log, found,
         "it fits a cause outside the catalog only where their shapes agree")
