@@ -1256,17 +1256,9 @@ def _backward(setup: Setup, state: ModelState, log: dict[str, Any], every: bool 
     """Stage 5: re-test each earlier choice with the others present; drop one whose removal
     costs less than the BIC margin (a stand-in for an effect accepted later). ``every``:
     the last choice too (after a revision, the last was accepted beside what went)."""
-    # every earlier choice's refit without it at once (they share this machine's cores); the
-    # first that is no longer needed goes
+    # the first earlier choice that is no longer needed goes
     tested = len(state.chosen) - (0 if every else 1)
-    reductions = _withouts(setup, state, [[c for j, c in enumerate(state.chosen) if j != i]
-                                          for i in range(tested)])
-    for choice, reduced in zip(state.chosen[:tested], reductions, strict=True):
-        if reduced is None:
-            continue
-        # what goes with it (a refinement of it) is judged with it: its parameters count too
-        gone = [c.candidate for c in state.chosen if c not in reduced.chosen]
-        verdict = judge(setup, reduced, Trial(tuple(gone), state.fit))
+    for choice, reduced, gone, verdict in _removals(setup, state, state.chosen[:tested]):
         if verdict.delta_bic >= -BIC_MARGIN:
             setup.log(f"dropped {choice.candidate.key}: with the later effects in place it "
                       f"is no longer needed ({verdict.note})")
@@ -1278,6 +1270,23 @@ def _backward(setup: Setup, state: ModelState, log: dict[str, Any], every: bool 
                                         "reason": reason})
             return _backward(setup, reduced, log, every)
     return state
+
+
+def _removals(setup: Setup, state: ModelState, tested: Sequence[Choice]
+              ) -> list[tuple[Choice, ModelState, list[Any], Trial]]:
+    """Each of the ``tested`` choices with the model refitted without it (the refits at once,
+    sharing this machine's cores), the candidates that went with it (a refinement of it goes
+    too, and its parameters count) and the verdict on it as the last one in; a choice whose
+    model could not be refitted without it is left out."""
+    reductions = _withouts(setup, state, [[c for c in state.chosen if c is not x]
+                                          for x in tested])
+    out = []
+    for choice, reduced in zip(tested, reductions, strict=True):
+        if reduced is None:
+            continue
+        gone = [c.candidate for c in state.chosen if c not in reduced.chosen]
+        out.append((choice, reduced, gone, judge(setup, reduced, Trial(tuple(gone), state.fit))))
+    return out
 
 
 def _without(setup: Setup, state: ModelState, keep: list[Choice]) -> ModelState | None:
@@ -1438,25 +1447,19 @@ def _beside_stand_ins(setup: Setup, state: ModelState, log: dict[str, Any],
     one in with the rest of the model in place and the stand-ins gone: a round accepted it
     for what it explained with a stand-in fitting part of the record, and it stays only
     when it would pass that round's test now (significant by both noise filters, inside
-    its range, a share of the structure the residual holds). The weakest that fails goes
-    first, and the rest are judged again without it. fresh28's af13 (a seat heater on a
-    shared harness, outside the catalog): a series resistance taken first, then a force
-    offset and a current sensor's gain beside it; the resistance went as a stand-in, and
-    the two stayed on a test passed in its presence. Members of a pair are ``_orphans``'."""
+    its range, a share of the structure the residual holds, not a sliver of a residual far
+    above the noise). The weakest that fails goes first, and the rest are judged again
+    without it. fresh6's k12 (an input LC filter, outside the catalog): a speed sensor's
+    delay accepted beside a current sensor's delay removed 3 % of the residual once that
+    delay went as a stand-in. Members of a pair are ``_orphans``'."""
     names = ", ".join(c.candidate.key for c, _ in found)
     pairs = log.get("pairs", {})
     while True:
         judged = [c for c in state.chosen if not c.correction and c.candidate.key not in pairs]
         if not judged:
             return state
-        reductions = _withouts(setup, state, [[c for c in state.chosen if c is not x]
-                                              for x in judged])
         failed = []
-        for choice, reduced in zip(judged, reductions, strict=True):
-            if reduced is None:
-                continue
-            gone = [c.candidate for c in state.chosen if c not in reduced.chosen]
-            verdict = judge(setup, reduced, Trial(tuple(gone), state.fit))
+        for choice, reduced, gone, verdict in _removals(setup, state, judged):
             setup.log(f"  {choice.candidate.key} without {names}: {verdict.note}")
             if not verdict.passed:
                 failed.append((verdict.delta_bic, choice, reduced, gone, verdict))
