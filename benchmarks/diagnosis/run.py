@@ -58,7 +58,7 @@ SPLITS = ("tune", "heldout", "fresh", "fresh2", "fresh3", "fresh4", "fresh5", "f
           "fresh41", "fresh42", "fresh43", "fresh44", "fresh45", "fresh46", "fresh47",
           "fresh48", "fresh49", "fresh50", "fresh51", "fresh52",
           "fresh53", "fresh54",
-          "fresh55", "fresh56", "fresh57")
+          "fresh55", "fresh56", "fresh57", "fresh58")
 VERDICTS = ("right", "tie", "nothing", "nothing+structure", "partial", "wrong", "failed")
 #: [sigma] a marginal truth this close to another catalog effect's imprint (truth.json's
 #: separation_sigma, computed on the scipy models), or an effect this close to itself on the
