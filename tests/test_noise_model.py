@@ -3,18 +3,27 @@ prewhitening filter, and the long memory (1/f-like noise) taken out before the t
 
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 import numpy as np
 import pytest
 
+from circuitsim.loop.diagnose import decide
 from circuitsim.loop.diagnose.noise import (
+    Whitener,
+    delta_bic,
     fit_whitener,
     fractional_difference,
     lines_of,
     memory_order,
     memory_whiteners,
+    own_memory_whitener,
     perturbed_memory_order,
+    projected_sse,
     rises_to_zero,
     significant_lines,
+    whitened_sse,
+    whiteners_of,
 )
 
 from conftest import white_over_pink
@@ -218,3 +227,101 @@ def test_noise_alone_on_a_loggers_uneven_times_holds_no_line(tau):
         r = _ou(t, tau, seed) if tau else np.random.default_rng(seed).normal(size=N_LOG)
         w = fit_whitener(r)
         assert lines_of(w.apply(r), t, r, w).freqs.size == 0, seed
+
+
+@pytest.mark.parametrize("d", [0.0, 0.25, 0.45])
+def test_the_conditional_sum_of_squares_reads_a_long_memory_white_noise_has_none(d):
+    """own_memory_whitener on fractionally integrated white noise of order d (20 000
+    samples; the estimate's standard error sqrt(6 / (pi^2 n)) is 0.006): within 0.05 of d;
+    an AR(1) noise (phi 0.5, short memory) gets at most 0.1, its AR filter taking the rest."""
+    rng = np.random.default_rng(11)
+    x = rng.normal(size=20000)
+    w = own_memory_whitener(fractional_difference(x, -d) if d else x)
+    assert w.d == pytest.approx(d, abs=0.05)
+    ar = np.zeros(x.size)
+    for k in range(1, x.size):
+        ar[k] = 0.5 * ar[k - 1] + x[k]
+    assert own_memory_whitener(ar).d <= 0.1
+
+
+def test_projected_sse_is_generalised_least_squares_with_each_probe_its_own_filter():
+    """projected_sse against the explicit transform: each probe's AR(1) filter as a matrix
+    (its first row dropped, as ``Whitener.apply`` does), rows scaled by the deviation of the
+    whitened residual, the stacked columns fitted by least squares."""
+    rng = np.random.default_rng(5)
+    n, probes = 300, ["a", "b"]
+    filters = {"a": Whitener((-0.6,), 1.0), "b": Whitener((0.3,), 1.0, 0.0)}
+    r = {p: rng.normal(size=n) for p in probes}
+    cols = {p: rng.normal(size=(n, 2)) for p in probes}
+    rows, blocks = [], []
+    for p in probes:
+        L = np.eye(n)[1:] + filters[p].a[0] * np.eye(n)[:-1]  # e[k] = r[k] + a1 r[k-1]
+        scale = np.sqrt(np.mean((L @ r[p]) ** 2))
+        rows.append(L @ r[p] / scale)
+        blocks.append(L @ cols[p] / scale)
+    b, A = np.concatenate(rows), np.vstack(blocks)
+    e = b - A @ np.linalg.lstsq(A, b, rcond=None)[0]
+    out = projected_sse(r, cols, filters, probes)
+    for j, p in enumerate(probes):
+        scale = np.sqrt(np.mean((np.eye(n)[1:] @ r[p] + filters[p].a[0] *
+                                 np.eye(n)[:-1] @ r[p]) ** 2))
+        part = e[j * (n - 1):(j + 1) * (n - 1)]
+        assert out[p] == pytest.approx(float(part @ part) * scale ** 2, rel=1e-10)
+
+
+def _slow_profile_under_pink(seed: int, amp: float) -> tuple:
+    """fresh57's bi01 as a linear model: a slow speed profile (16 s at 125 Hz) on probe "a"
+    under white noise of unit deviation and a 1/f noise of 0.5; probe "b" white; one declared
+    parameter acting on both (its column the profile's slope), fitted by least squares
+    weighing every sample alike, as the diagnosis's refit does; the candidate is ``amp``
+    times the profile on "a" alone, refitted beside the declared parameter. The (setup,
+    poorer state, trial) that ``decide._memory_bic`` reads, and the AR filter's ΔBIC."""
+    n = 2001
+    t = np.arange(n) / 125.0
+    y = np.interp(t, [0, 1, 1.5, 4.5, 5.5, 8.5, 9.2, 10.5, 13.5, 14.2, 16],
+                  [0, 0, 3, 3, 9.5, 9.5, 0, -6, -6, 0, 0])
+    rng = np.random.default_rng(seed)
+    spectrum = np.fft.rfft(rng.normal(size=n))
+    spectrum[0] = 0.0
+    spectrum[1:] /= np.sqrt(np.arange(1, spectrum.size))
+    pink = np.fft.irfft(spectrum, n)
+    data = np.concatenate([rng.normal(size=n) + 0.5 * pink / pink.std() + amp * y,
+                           rng.normal(size=n)])
+    slope = np.gradient(y, t)
+    declared = {"a": slope[:, None], "b": 0.3 * slope[:, None]}
+    J0 = np.vstack([declared["a"], declared["b"]])
+    X = np.column_stack([J0, np.concatenate([y, np.zeros(n)])])
+    r0 = data - J0 @ np.linalg.lstsq(J0, data, rcond=None)[0]
+    r1 = r0 - X @ np.linalg.lstsq(X, r0, rcond=None)[0]
+    probes = ["a", "b"]
+    before, after = {"a": r0[:n], "b": r0[n:]}, {"a": r1[:n], "b": r1[n:]}
+    setup = SimpleNamespace(probes=probes, n=n)
+    state = SimpleNamespace(fit=SimpleNamespace(residuals=before),
+                            memory=lambda s: memory_whiteners(before, probes),
+                            columns=lambda s: declared,
+                            whitened=lambda s, w: whitened_sse(before, w, probes))
+    trial = SimpleNamespace(fit=SimpleNamespace(residuals=after))
+    w = whiteners_of(after, probes)
+    ar = delta_bic(whitened_sse(after, w, probes), whitened_sse(before, w, probes), n, 1, probes)
+    return setup, state, trial, ar
+
+
+def test_a_slow_regressor_fitting_a_pink_wander_is_no_effect_a_real_one_is():
+    """The long-memory test (``decide._memory_bic``) on 200 seeds of the linear bi01 above.
+    With no effect, the AR filter alone accepts the profile on 35 (ΔBIC < -10: a spurious
+    regression on the wander); the long-memory test, which refits the declared parameter
+    under the noise read by conditional sum of squares, on 4 (the gate it replaced, a
+    log-periodogram order on the richer residual and no refit, on 7). With the profile at
+    0.1 of the noise (24 sigma over the record) it accepts 183 (the old gate 138)."""
+    def accepted(amp: float) -> tuple[int, int]:
+        ar = new = 0
+        for seed in range(200):
+            setup, state, trial, d_ar = _slow_profile_under_pink(seed, amp)
+            ar += d_ar < -decide.BIC_MARGIN
+            new += d_ar < -decide.BIC_MARGIN and \
+                decide._memory_bic(setup, state, trial, 1) < -decide.BIC_MARGIN
+        return ar, new
+
+    ar, new = accepted(0.0)
+    assert ar >= 20 and new <= 10  # binomial sd about 2 at 4 in 200
+    assert accepted(0.1)[1] >= 170

@@ -7,6 +7,7 @@ netlist, compiled model, free parameters, fit, and what has been accepted so far
 
 from __future__ import annotations
 
+import math
 import warnings
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
@@ -15,7 +16,12 @@ from typing import Any
 import numpy as np
 
 from circuitsim.errors import CircuitsimError
-from circuitsim.loop.diagnose.noise import Whitener, whitened_sse, whiteners_of
+from circuitsim.loop.diagnose.noise import (
+    Whitener,
+    memory_whiteners,
+    whitened_sse,
+    whiteners_of,
+)
 
 MAX_EFFECTS = 4  # new causes a diagnosis names at most
 
@@ -67,12 +73,45 @@ class ModelState:
     bounds: dict[str, tuple[float, float]]
     chosen: list[Choice] = field(default_factory=list)
     base_raw: Any = None  # the declared netlist, before any patch
+    _memory: Any = field(default=None, repr=False, compare=False)
+    _columns: Any = field(default=None, repr=False, compare=False)
 
     def whitened(self, setup: Setup, whiteners: Mapping[str, Whitener] | None = None
                  ) -> dict[str, float]:
         """Per-probe sums of squares of the prewhitened residual (own filters by default)."""
         w = whiteners or whiteners_of(self.fit.residuals, setup.probes)
         return whitened_sse(self.fit.residuals, w, setup.probes)
+
+    def memory(self, setup: Setup) -> dict[str, Whitener]:
+        """The residual's long-memory whiteners (``noise.memory_whiteners``), kept while the
+        fit is this one: every trial judged against this state reads them."""
+        if self._memory is None or self._memory[0] is not self.fit:
+            self._memory = (self.fit, memory_whiteners(self.fit.residuals, setup.probes))
+        return self._memory[1]
+
+    def columns(self, setup: Setup) -> dict[str, np.ndarray] | None:
+        """Per probe, the model's change [probe unit] for a step of each free parameter of
+        one standard error (a thousandth of its value where that is unknown): the
+        linearised model about this fit, for refitting it under another noise model. None
+        when a step fails to simulate."""
+        if self._columns is None or self._columns[0] is not self.fit:
+            self._columns = (self.fit, self._stepped(setup))
+        return self._columns[1]
+
+    def _stepped(self, setup: Setup) -> dict[str, np.ndarray] | None:
+        stderr = getattr(self.fit, "stderr", {}) or {}
+        steps = {}
+        for name in self.free:
+            value, h = float(self.params[name]), float(stderr.get(name, math.nan))
+            steps[name] = h if math.isfinite(h) and h > 0 else 1e-3 * (abs(value) or 1.0)
+        runs = simulate_many(setup, self.model, [{**self.params, n: self.params[n] + h}
+                                                 for n, h in steps.items()])
+        if any(r is None for r in runs):
+            return None
+        base = {p: np.asarray(setup.record[p], float) - np.asarray(self.fit.residuals[p])
+                for p in setup.probes}
+        return {p: np.column_stack([np.asarray(r[p], float) - base[p] for r in runs])
+                if runs else np.zeros((base[p].size, 0)) for p in setup.probes}
 
 
 def compile_raw(raw):
