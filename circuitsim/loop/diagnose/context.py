@@ -104,6 +104,8 @@ class ModelState:
         for name in self.free:
             value, h = float(self.params[name]), float(stderr.get(name, math.nan))
             steps[name] = h if math.isfinite(h) and h > 0 else 1e-3 * (abs(value) or 1.0)
+        if not steps:  # nothing freed: the poorer model has no columns, and nothing to run
+            return {p: np.zeros((np.size(self.fit.residuals[p]), 0)) for p in setup.probes}
         runs = simulate_many(setup, self.model, [{**self.params, n: self.params[n] + h}
                                                  for n, h in steps.items()])
         if any(r is None for r in runs):
@@ -111,7 +113,7 @@ class ModelState:
         base = {p: np.asarray(setup.record[p], float) - np.asarray(self.fit.residuals[p])
                 for p in setup.probes}
         return {p: np.column_stack([np.asarray(r[p], float) - base[p] for r in runs])
-                if runs else np.zeros((base[p].size, 0)) for p in setup.probes}
+                for p in setup.probes}
 
 
 def compile_raw(raw):
